@@ -1,0 +1,37 @@
+# Uniform per-target settings: warnings, -Werror under SCANTLING_WERROR. No global flags.
+function(scantling_set_target_options target)
+  target_compile_features(${target} PUBLIC cxx_std_20)
+  target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow)
+  if(SCANTLING_WERROR)
+    target_compile_options(${target} PRIVATE -Werror)
+  endif()
+endfunction()
+
+# scantling_add_module(<name> SOURCES a.cpp ... PUBLIC_DEPS ... PRIVATE_DEPS ...)
+# Declares library scantling_<name> with alias scantling::<name>.
+function(scantling_add_module name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;PUBLIC_DEPS;PRIVATE_DEPS" ${ARGN})
+  set(target scantling_${name})
+  add_library(${target} ${ARG_SOURCES})
+  add_library(scantling::${name} ALIAS ${target})
+  target_include_directories(${target} PUBLIC
+    $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/include>
+    $<INSTALL_INTERFACE:include>)
+  target_link_libraries(${target} PUBLIC ${ARG_PUBLIC_DEPS} PRIVATE ${ARG_PRIVATE_DEPS})
+  set_target_properties(${target} PROPERTIES EXPORT_NAME ${name})
+  scantling_set_target_options(${target})
+  set_property(GLOBAL APPEND PROPERTY SCANTLING_MODULE_TARGETS ${target})
+endfunction()
+
+# scantling_add_test(<module> SOURCES ... DEPS ...): one gtest executable per module.
+function(scantling_add_test module)
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
+  set(target scantling_${module}_tests)
+  add_executable(${target} ${ARG_SOURCES})
+  target_link_libraries(${target} PRIVATE ${ARG_DEPS} GTest::gtest_main)
+  target_compile_definitions(${target} PRIVATE
+    SCANTLING_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
+    SCANTLING_SHARED_DATA_DIR="${SCANTLING_SHARED_DATA_DIR}")
+  scantling_set_target_options(${target})
+  gtest_discover_tests(${target} DISCOVERY_TIMEOUT 60 PROPERTIES LABELS ${module})
+endfunction()

@@ -1,0 +1,52 @@
+#!/usr/bin/env bash
+# Installs every Debian 12 package scantling builds against. Idempotent: packages already
+# present are skipped, `apt-get update` runs only when the package lists are missing or a
+# package is not known to apt yet.
+#   scripts/install-deps.sh           build, test and run dependencies
+#   scripts/install-deps.sh --bench   plus the comparison baselines used by `make bench`
+set -euo pipefail
+
+packages=(
+  build-essential cmake make git pkg-config clang-format clang-tidy
+  libeigen3-dev libnanoflann-dev libtbb-dev libyaml-cpp-dev nlohmann-json3-dev
+  libcli11-dev libspdlog-dev libfmt-dev libgtest-dev libgmock-dev libbenchmark-dev
+  libassimp-dev libembree-dev libceres-dev liboctomap-dev zlib1g-dev libpng-dev
+)
+if [[ "${1:-}" == "--bench" ]]; then
+  packages+=(libopen3d-dev)
+elif [[ $# -gt 0 ]]; then
+  echo "install-deps.sh: unknown option '$1' (expected --bench or nothing)" >&2
+  exit 2
+fi
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [[ ${#missing[@]} -eq 0 ]]; then
+  echo "install-deps: all ${#packages[@]} packages already installed"
+  exit 0
+fi
+
+sudo_cmd=()
+if [[ $(id -u) -ne 0 ]]; then
+  if command -v sudo >/dev/null 2>&1; then
+    sudo_cmd=(sudo)
+  else
+    echo "install-deps: need root (or sudo) to install: ${missing[*]}" >&2
+    exit 1
+  fi
+fi
+
+export DEBIAN_FRONTEND=noninteractive
+if [[ -z "$(ls -A /var/lib/apt/lists 2>/dev/null | grep -v -e '^lock$' -e '^partial$' -e '^auxfiles$')" ]] ||
+   ! apt-cache show "${missing[0]}" >/dev/null 2>&1; then
+  echo "install-deps: apt-get update"
+  "${sudo_cmd[@]}" apt-get update
+fi
+echo "install-deps: apt-get install -y ${missing[*]}"
+"${sudo_cmd[@]}" apt-get install -y --no-install-recommends "${missing[@]}"
+echo "install-deps: done"
