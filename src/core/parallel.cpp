@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
 #include <tbb/task_arena.h>
 
 namespace scantling {
@@ -25,12 +26,15 @@ void parallel_for(const ParallelConfig& config, std::size_t n, std::size_t grain
         body(0, n);
         return;
     }
-    const int threads =
-        config.num_threads > 0 ? config.num_threads : tbb::task_arena::automatic;
+    const int threads = config.num_threads > 0 ? config.num_threads : tbb::task_arena::automatic;
     tbb::task_arena arena(threads);
     arena.execute([&] {
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, grain),
-                          [&](const tbb::blocked_range<std::size_t>& r) { body(r.begin(), r.end()); });
+        // simple_partitioner honours the documented "at most grain indices" per call (the
+        // default auto_partitioner hands out larger ranges) and splits at fixed boundaries.
+        tbb::parallel_for(
+            tbb::blocked_range<std::size_t>(0, n, grain),
+            [&](const tbb::blocked_range<std::size_t>& r) { body(r.begin(), r.end()); },
+            tbb::simple_partitioner());
     });
 }
 

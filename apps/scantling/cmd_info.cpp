@@ -1,0 +1,92 @@
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <cctype>
+#include <chrono>
+#include <filesystem>
+
+#include <scantling/core/error.hpp>
+#include <scantling/core/point_cloud.hpp>
+#include <scantling/core/triangle_mesh.hpp>
+#include <scantling/io/cloud_io.hpp>
+#include <scantling/io/mesh_io.hpp>
+#include <scantling/io/ply.hpp>
+
+#include "scantling/commands.hpp"
+
+namespace scantling::app {
+namespace {
+
+std::string lower_extension(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return ext;
+}
+
+std::string bounds_line(const Aabb& box) {
+    if (box.empty()) return "bounds: empty\n";
+    // Adding +0.0 turns -0.0 into 0.0, so a keel at z = 0 does not print as "-0.000000".
+    const Eigen::Vector3d lo = box.min.array() + 0.0, hi = box.max.array() + 0.0;
+    return fmt::format("bounds: {:.6f} {:.6f} {:.6f} {:.6f} {:.6f} {:.6f}\n", lo.x(), lo.y(),
+                       lo.z(), hi.x(), hi.y(), hi.z());
+}
+
+std::string cloud_report(const PointCloud& cloud) {
+    Aabb box;
+    std::size_t non_finite = 0;
+    for (const Eigen::Vector3d& p : cloud.points) {
+        // Organised clouds carry NaN placeholders: keep them out of the bounds, count them.
+        if (p.allFinite()) {
+            box.extend(p);
+        } else {
+            ++non_finite;
+        }
+    }
+    std::string text = fmt::format("points: {}\n", cloud.size());
+    text += fmt::format("fields: {}\n", fmt::join(field_names(cloud), " "));
+    text += bounds_line(box);
+    if (non_finite > 0) text += fmt::format("non_finite: {}\n", non_finite);
+    return text;
+}
+
+std::string mesh_report(const TriangleMesh& mesh) {
+    return fmt::format("vertices: {}\ntriangles: {}\n", mesh.num_vertices(), mesh.num_triangles()) +
+           bounds_line(compute_bounds(mesh)) + fmt::format("area_m2: {:.6f}\n", surface_area(mesh));
+}
+
+/// A PLY file is a mesh when it has faces, a cloud otherwise.
+std::string ply_report(const std::string& path) {
+    io::PlyData ply = io::read_ply(path);
+    if (ply.faces.empty()) return cloud_report(ply.cloud);
+    TriangleMesh mesh;
+    mesh.vertices = std::move(ply.cloud.points);
+    mesh.triangles = std::move(ply.faces);
+    return mesh_report(mesh);
+}
+
+}  // namespace
+
+void run_info(const InfoOptions& options, std::ostream& out) {
+    const auto start = std::chrono::steady_clock::now();
+    const std::string ext = lower_extension(options.input);
+    std::string report;
+    if (ext == ".obj" || ext == ".stl") {
+        report = mesh_report(io::read_mesh(options.input));
+    } else if (ext == ".ply") {
+        report = ply_report(options.input);
+    } else if (ext == ".pcd" || ext == ".bin") {
+        report = cloud_report(io::read_cloud(options.input));
+    } else {
+        throw FileError(options.input,
+                        "unknown extension '" + ext + "', expected .pcd, .ply, .bin, .obj or .stl");
+    }
+    spdlog::debug(
+        "read {} in {:.1f} ms", options.input,
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+            .count());
+    out << report;
+}
+
+}  // namespace scantling::app

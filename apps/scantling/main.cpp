@@ -1,0 +1,138 @@
+// `scantling`: command-line tools over the scantling libraries. The only file with CLI11.
+// Errors: exactly one line "scantling: error: <message>" on stderr and exit code 2.
+#include <fmt/format.h>
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <cstdio>
+#include <exception>
+#include <iostream>
+#include <string>
+
+#include "scantling/commands.hpp"
+
+namespace {
+
+constexpr int kExitError = 2;
+const std::string kSeeHelp = " (see scantling --help)";
+
+struct CommandLine {
+    bool verbose = false;
+    int num_threads = 0;
+    double voxel_size_m = 0.0;
+    scantling::app::InfoOptions info;
+    scantling::app::ConvertOptions convert;
+    CLI::App* info_cmd = nullptr;
+    CLI::App* convert_cmd = nullptr;
+    CLI::App* downsample_cmd = nullptr;
+    CLI::Option* convert_voxel = nullptr;
+};
+
+int report_error(std::string message) {
+    std::replace(message.begin(), message.end(), '\n', ' ');
+    fmt::print(stderr, "scantling: error: {}\n", message);
+    return kExitError;
+}
+
+void add_threads_option(CLI::App& app, CommandLine& cl) {
+    app.add_option("--threads", cl.num_threads, "Worker threads (0 = all hardware threads)")
+        ->type_name("N");
+}
+
+void add_in_out(CLI::App& cmd, CommandLine& cl) {
+    cmd.add_option("IN", cl.convert.input, "Input cloud: .pcd, .ply or .bin (KITTI velodyne)")
+        ->required()
+        ->type_name("");
+    cmd.add_option("OUT", cl.convert.output,
+                   "Output cloud: .pcd, .ply or .bin (format from the extension)")
+        ->required()
+        ->type_name("");
+    cmd.add_flag("--ascii", cl.convert.ascii, "Write ascii PCD (.pcd output only; default binary)");
+    add_threads_option(cmd, cl);
+}
+
+void define_commands(CLI::App& app, CommandLine& cl) {
+    app.set_version_flag("--version", std::string("scantling ") + SCANTLING_VERSION);
+    app.add_flag("-v,--verbose", cl.verbose, "Debug logging on stderr");
+    add_threads_option(app, cl);
+    // Checked after parsing (not require_subcommand) so that a misspelt subcommand is named.
+    app.require_subcommand(0, 1);
+    // Subcommands created below inherit this: `scantling info FILE -v` works too.
+    app.fallthrough();
+
+    cl.info_cmd = app.add_subcommand(
+        "info", "Print size, fields, bounds (and area of a mesh) of a cloud or mesh");
+    cl.info_cmd
+        ->add_option("FILE", cl.info.input,
+                     "Cloud (.pcd, .bin, .ply without faces) or mesh (.obj, .stl, .ply with faces)")
+        ->required()
+        ->type_name("");
+
+    cl.convert_cmd = app.add_subcommand(
+        "convert", "Convert a cloud between .pcd, .ply and .bin (optionally downsampled)");
+    add_in_out(*cl.convert_cmd, cl);
+    cl.convert_voxel = cl.convert_cmd
+                           ->add_option("--voxel", cl.voxel_size_m,
+                                        "Voxel-downsample first: voxel edge in metres (> 0)")
+                           ->type_name("SIZE_M");
+
+    cl.downsample_cmd = app.add_subcommand(
+        "downsample", "Voxel-grid downsample a cloud (one centroid per occupied voxel)");
+    add_in_out(*cl.downsample_cmd, cl);
+    cl.downsample_cmd->add_option("--voxel", cl.voxel_size_m, "Voxel edge in metres (> 0)")
+        ->required()
+        ->type_name("SIZE_M");
+    // Set last: subcommands created after it would inherit it.
+    app.footer("Run 'scantling SUBCOMMAND --help' for the options of a subcommand.");
+}
+
+void set_up_logging(bool verbose) {
+    // Libraries never print; the app logs to stderr so that stdout stays the report.
+    auto logger = spdlog::stderr_color_mt("scantling");
+    logger->set_level(verbose ? spdlog::level::debug : spdlog::level::warn);
+    spdlog::set_default_logger(logger);
+}
+
+void run(CommandLine& cl) {
+    cl.convert.num_threads = cl.num_threads;
+    if (cl.info_cmd->parsed()) return scantling::app::run_info(cl.info, std::cout);
+    if (cl.downsample_cmd->parsed() || cl.convert_voxel->count() > 0) {
+        cl.convert.voxel_size_m = cl.voxel_size_m;
+    }
+    if (cl.convert_cmd->parsed()) return scantling::app::run_convert(cl.convert, std::cout);
+    scantling::app::run_downsample(cl.convert, std::cout);
+}
+
+int run_main(int argc, char** argv) {
+    CLI::App app("Tools for the scantling inspection-robot stack", "scantling");
+    CommandLine cl;
+    try {
+        define_commands(app, cl);
+        app.parse(argc, argv);
+        if (app.get_subcommands().empty()) {
+            return report_error("a subcommand is required: info, convert or downsample" + kSeeHelp);
+        }
+    } catch (const CLI::Success& e) {
+        return app.exit(e);  // --help, --version: printed on stdout, exit 0
+    } catch (const CLI::Error& e) {
+        return report_error(e.what() + kSeeHelp);
+    }
+    set_up_logging(cl.verbose);
+    run(cl);
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    try {
+        return run_main(argc, argv);
+    } catch (const std::exception& e) {
+        return report_error(e.what());
+    } catch (...) {
+        std::fputs("scantling: error: unknown exception\n", stderr);
+        return kExitError;
+    }
+}
