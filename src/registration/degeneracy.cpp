@@ -1,0 +1,41 @@
+#include <scantling/registration/icp.hpp>
+
+#include <Eigen/Eigenvalues>
+
+namespace scantling::registration {
+namespace {
+
+/// Left twist at the origin from one at `c` (same axes): delta = Ad(translation c) delta_c.
+Matrix6d adjoint_of_translation(const Eigen::Vector3d& c) {
+    Matrix6d A = Matrix6d::Identity();
+    A.topRightCorner<3, 3>() = hat(c);
+    return A;
+}
+
+}  // namespace
+
+// Why move and scale before the eigen-decomposition: about a far-away origin every rotation
+// looks like a translation, and rad and m eigenvalues are not comparable. About the centroid,
+// with omega measured as L·omega (metres of displacement at the RMS radius L), a rotation and a
+// translation that move the points equally have equal eigenvalues.
+DegeneracyReport analyze_degeneracy(const Matrix6d& H, const Eigen::Vector3d& centroid_target,
+                                    double radius_m, double threshold) {
+    const Matrix6d A = adjoint_of_translation(centroid_target);
+    Vector6d scale_inv;
+    scale_inv << 1.0, 1.0, 1.0, 1.0 / radius_m, 1.0 / radius_m, 1.0 / radius_m;
+    const Matrix6d to_origin = A * scale_inv.asDiagonal();  // delta = to_origin * u
+    const Matrix6d H_u = to_origin.transpose() * H * to_origin;
+    const Eigen::SelfAdjointEigenSolver<Matrix6d> solver(0.5 * (H_u + H_u.transpose()));
+    DegeneracyReport report;
+    const double largest = solver.eigenvalues()(5);
+    report.eigenvalues =
+        largest > 0.0 ? Vector6d((solver.eigenvalues() / largest).cwiseMax(0.0)) : Vector6d::Zero();
+    for (int k = 0; k < 6; ++k) {
+        if (report.eigenvalues(k) >= threshold) break;
+        report.weak_directions.push_back((to_origin * solver.eigenvectors().col(k)).normalized());
+    }
+    report.degenerate = !report.weak_directions.empty();
+    return report;
+}
+
+}  // namespace scantling::registration

@@ -1,0 +1,90 @@
+#pragma once
+// Helpers shared by the trajectory and vehicle tests: numerical-derivative checks of a
+// trajectory, and small analytic meshes for the crawler.
+
+#include <scantling/core/se3.hpp>
+#include <scantling/core/triangle_mesh.hpp>
+#include <scantling/sim/trajectory.hpp>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+namespace scantling::sim::testing {
+
+// Central differences of a C² motion: truncation O(h²) and round-off O(ε |p| / h) (first
+// derivative) or O(ε |p| / h²) (second); with |p| ~ 10 m both stay below these tolerances.
+constexpr double kVelocityStepS = 1e-4;
+constexpr double kAccelStepS = 1e-3;
+constexpr double kVelocityTolMps = 1e-6;
+constexpr double kAccelTolMps2 = 1e-5;
+constexpr double kRateTolRadps = 1e-6;
+
+/// v, a and ω of `trajectory` at `t_s` agree with central differences of its pose.
+inline void expect_consistent_derivatives(const Trajectory& trajectory, double t_s) {
+    const double h = kVelocityStepS;
+    const MotionState m = trajectory.at(t_s);
+    const MotionState before = trajectory.at(t_s - h);
+    const MotionState after = trajectory.at(t_s + h);
+    const Eigen::Vector3d v_num =
+        (after.T_world_body.translation() - before.T_world_body.translation()) / (2.0 * h);
+    EXPECT_LT((v_num - m.v_world_mps).norm(), kVelocityTolMps) << "t = " << t_s;
+    const Eigen::Vector3d omega_num =
+        so3_log(before.T_world_body.linear().transpose() * after.T_world_body.linear()) / (2.0 * h);
+    EXPECT_LT((omega_num - m.omega_body_radps).norm(), kRateTolRadps) << "t = " << t_s;
+    const double H = kAccelStepS;
+    const Eigen::Vector3d p0 = m.T_world_body.translation();
+    const Eigen::Vector3d a_num = (trajectory.at(t_s + H).T_world_body.translation() - 2.0 * p0 +
+                                   trajectory.at(t_s - H).T_world_body.translation()) /
+                                  (H * H);
+    EXPECT_LT((a_num - m.a_world_mps2).norm(), kAccelTolMps2) << "t = " << t_s;
+}
+
+/// Checks `expect_consistent_derivatives` at `n` evenly spread interior times.
+inline void expect_consistent_derivatives_along(const Trajectory& trajectory, int n) {
+    const double T = trajectory.duration_s();
+    for (int i = 1; i < n; ++i) expect_consistent_derivatives(trajectory, T * i / n);
+}
+
+/// Flat square grid mesh in z = 0, [-half, half]², `cells` × `cells` squares, normal +z.
+inline TriangleMesh grid_plate(double half_m, int cells) {
+    TriangleMesh mesh;
+    for (int j = 0; j <= cells; ++j) {
+        for (int i = 0; i <= cells; ++i) {
+            mesh.vertices.emplace_back(-half_m + 2.0 * half_m * i / cells,
+                                       -half_m + 2.0 * half_m * j / cells, 0.0);
+        }
+    }
+    const auto id = [cells](int i, int j) { return j * (cells + 1) + i; };
+    for (int j = 0; j < cells; ++j) {
+        for (int i = 0; i < cells; ++i) {
+            mesh.triangles.emplace_back(id(i, j), id(i + 1, j), id(i + 1, j + 1));
+            mesh.triangles.emplace_back(id(i, j), id(i + 1, j + 1), id(i, j + 1));
+        }
+    }
+    return mesh;
+}
+
+/// Open vertical cylinder (axis z, z in [0, height]), `segments` facets around, `rings`
+/// bands; triangles face outward.
+inline TriangleMesh open_cylinder(double radius_m, double height_m, int segments, int rings) {
+    TriangleMesh mesh;
+    for (int k = 0; k <= rings; ++k) {
+        for (int i = 0; i < segments; ++i) {
+            const double a = 2.0 * std::numbers::pi * i / segments;
+            mesh.vertices.emplace_back(radius_m * std::cos(a), radius_m * std::sin(a),
+                                       height_m * k / rings);
+        }
+    }
+    const auto id = [segments](int i, int k) { return k * segments + (i % segments); };
+    for (int k = 0; k < rings; ++k) {
+        for (int i = 0; i < segments; ++i) {
+            mesh.triangles.emplace_back(id(i, k), id(i + 1, k), id(i + 1, k + 1));
+            mesh.triangles.emplace_back(id(i, k), id(i + 1, k + 1), id(i, k + 1));
+        }
+    }
+    return mesh;
+}
+
+}  // namespace scantling::sim::testing
