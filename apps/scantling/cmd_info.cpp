@@ -2,7 +2,6 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
-#include <cctype>
 #include <chrono>
 #include <filesystem>
 
@@ -10,6 +9,7 @@
 #include <scantling/core/point_cloud.hpp>
 #include <scantling/core/triangle_mesh.hpp>
 #include <scantling/io/cloud_io.hpp>
+#include <scantling/io/file_path.hpp>
 #include <scantling/io/mesh_io.hpp>
 #include <scantling/io/ply.hpp>
 
@@ -17,13 +17,6 @@
 
 namespace scantling::app {
 namespace {
-
-std::string lower_extension(const std::string& path) {
-    std::string ext = std::filesystem::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return ext;
-}
 
 std::string bounds_line(const Aabb& box) {
     if (box.empty()) return "bounds: empty\n";
@@ -70,7 +63,7 @@ std::string ply_report(const std::string& path) {
 
 void run_info(const InfoOptions& options, std::ostream& out) {
     const auto start = std::chrono::steady_clock::now();
-    const std::string ext = lower_extension(options.input);
+    const std::string ext = io::lower_extension(options.input);
     std::string report;
     if (ext == ".obj" || ext == ".stl") {
         report = mesh_report(io::read_mesh(options.input));

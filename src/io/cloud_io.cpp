@@ -1,19 +1,14 @@
 #include <scantling/core/error.hpp>
 #include <scantling/io/cloud_io.hpp>
+#include <scantling/io/file_path.hpp>
 #include <scantling/io/kitti.hpp>
 #include <scantling/io/pcd.hpp>
 #include <scantling/io/ply.hpp>
 
-#include <algorithm>
-#include <cctype>
-#include <filesystem>
-
 namespace scantling::io {
 
 CloudFormat cloud_format_from_path(const std::string& path) {
-    std::string ext = std::filesystem::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    const std::string ext = lower_extension(path);
     if (ext == ".pcd") return CloudFormat::kPcd;
     if (ext == ".ply") return CloudFormat::kPly;
     if (ext == ".bin") return CloudFormat::kKittiBin;

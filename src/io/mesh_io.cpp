@@ -1,5 +1,6 @@
 #include <scantling/core/error.hpp>
 #include <scantling/io/atomic_file.hpp>
+#include <scantling/io/file_path.hpp>
 #include <scantling/io/mesh_io.hpp>
 #include <scantling/io/ply.hpp>
 
@@ -9,7 +10,6 @@
 #include <assimp/Importer.hpp>
 
 #include <algorithm>
-#include <cctype>
 #include <cerrno>
 #include <filesystem>
 #include <fstream>
@@ -19,13 +19,6 @@
 
 namespace scantling::io {
 namespace {
-
-std::string lower_extension(const std::string& path) {
-    std::string ext = std::filesystem::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return ext;
-}
 
 void check_readable(const std::string& path) {
     std::error_code ec;
