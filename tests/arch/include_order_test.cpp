@@ -18,9 +18,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const std::vector<std::string> kOrder = {"core",         "io",           "mapping",  "registration",
-                                         "perception",   "odometry",     "localization",
-                                         "safety",       "planning",     "control",  "mission"};
+const std::vector<std::string> kOrder = {"core",       "io",       "mapping",      "registration",
+                                         "perception", "odometry", "localization", "safety",
+                                         "planning",   "control",  "mission"};
 
 std::optional<int> rank_of(const std::string& module) {
     const auto it = std::find(kOrder.begin(), kOrder.end(), module);

@@ -17,7 +17,9 @@ struct Aabb {
         min = min.cwiseMin(p);
         max = max.cwiseMax(p);
     }
-    Eigen::Vector3d size() const { return empty() ? Eigen::Vector3d::Zero() : Eigen::Vector3d(max - min); }
+    Eigen::Vector3d size() const {
+        return empty() ? Eigen::Vector3d::Zero() : Eigen::Vector3d(max - min);
+    }
     Eigen::Vector3d center() const { return 0.5 * (min + max); }
 };
 

@@ -12,30 +12,30 @@ namespace scantling {
 
 /// Base class of every exception scantling throws. `what()` is one complete line.
 class Error : public std::runtime_error {
-public:
+  public:
     using std::runtime_error::runtime_error;
 };
 
 /// A configuration value is impossible: names the field, the value and the expectation.
 /// Example message: "registration.voxel_size_m = -0.1, expected > 0".
 class ConfigError : public Error {
-public:
+  public:
     using Error::Error;
 };
 
 /// Input data violates a contract (empty cloud, NaN point, mismatched field sizes).
 class InputError : public Error {
-public:
+  public:
     using Error::Error;
 };
 
 /// A file cannot be opened, read, created or renamed (missing, unwritable, ...).
 class FileError : public Error {
-public:
+  public:
     FileError(std::string path, const std::string& what);
     const std::string& path() const { return path_; }
 
-private:
+  private:
     std::string path_;
 };
 
@@ -49,12 +49,12 @@ struct FileLocation {
 /// A file's content is malformed: names the file, the location and what was expected.
 /// Message: "<path>: line 12: <what>" or "<path>: byte 4096: <what>".
 class ParseError : public Error {
-public:
+  public:
     ParseError(std::string path, FileLocation location, const std::string& what);
     const std::string& path() const { return path_; }
     const FileLocation& location() const { return location_; }
 
-private:
+  private:
     std::string path_;
     FileLocation location_;
 };
