@@ -81,7 +81,7 @@ World build_hull_mesh_in_dock(const HullMeshDockConfig& config) {
     builder.surface("hull");  // tag 0, the hull's
     const auto& s = config.surroundings;
     const detail::HullExtent extent{b.min.x(), b.max.x(), b.max.y(), b.min.z(),
-                                    s.environment == HullEnvironment::DryDock
+                                    s.environment == HullEnvironment::kDryDock
                                         ? block_positions(world.mesh, b, s)
                                         : std::vector<double>{}};
     detail::add_surroundings(builder, extent, s);

@@ -207,7 +207,7 @@ void ShipHullConfig::validate(std::string_view prefix) const {
     require_positive(prefix, "frame_spacing_m", frame_spacing_m);
     require_positive(prefix, "longitudinal_spacing_m", longitudinal_spacing_m);
     surroundings.validate(fmt::format("{}.surroundings", prefix));
-    require(surroundings.environment != HullEnvironment::Quay || surroundings.draught_m < depth_m,
+    require(surroundings.environment != HullEnvironment::kQuay || surroundings.draught_m < depth_m,
             prefix, "surroundings.draught_m", surroundings.draught_m, "< depth_m (afloat)");
     defects.validate(fmt::format("{}.defects", prefix));
 }

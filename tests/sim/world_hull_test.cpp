@@ -149,12 +149,12 @@ TEST(ShipHull, LandmarksAndDefectsLieOnTheShell) {
 
 TEST(ShipHull, SurroundingsFollowTheEnvironment) {
     ShipHullConfig c;
-    c.surroundings.environment = HullEnvironment::None;
+    c.surroundings.environment = HullEnvironment::kNone;
     const World bare = build_ship_hull(c);
     for (std::size_t i = 0; i < bare.mesh.num_triangles(); ++i) ASSERT_TRUE(is_hull(bare, i));
     EXPECT_EQ(find_surface(bare.metadata, "dock_floor"), -1);
 
-    c.surroundings.environment = HullEnvironment::Quay;
+    c.surroundings.environment = HullEnvironment::kQuay;
     const World quay = build_ship_hull(c);
     check_valid(quay, "quay");
     EXPECT_EQ(find_surface(quay.metadata, "keel_blocks"), -1);

@@ -22,16 +22,16 @@
 namespace scantling::sim {
 
 enum class HullEnvironment {
-    None,     ///< the hull alone
-    DryDock,  ///< dock floor (surface "dock_floor"), two side walls ("dock_wall"), "keel_blocks"
-    Quay,     ///< "water" surface, "quay_wall", "quay_deck", "bollards", "seabed"
+    kNone,     ///< the hull alone
+    kDryDock,  ///< dock floor (surface "dock_floor"), two side walls ("dock_wall"), "keel_blocks"
+    kQuay,     ///< "water" surface, "quay_wall", "quay_deck", "bollards", "seabed"
 };
 
 /// Where the hull stands. Surfaces are added only for the chosen environment. The "water"
 /// surface is a plain tagged plane: sensors may treat it as non-returning (LiDAR) or as a
 /// surface (sonar from below); it also spans the hull's inside, hidden by a closed hull.
 struct HullSurroundingsConfig {
-    HullEnvironment environment = HullEnvironment::DryDock;
+    HullEnvironment environment = HullEnvironment::kDryDock;
     double end_margin_m = 15.0;  ///< floor / water / quay beyond each end of the hull, along x
     // Dry dock: the hull rests on keel blocks; the dock floor is their foot.
     double wall_clearance_m = 8.0;      ///< widest hull point to each dock wall, along y

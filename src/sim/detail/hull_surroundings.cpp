@@ -75,8 +75,8 @@ void add_quay(MeshBuilder& builder, const HullExtent& hull, const HullSurroundin
 
 void add_surroundings(MeshBuilder& builder, const HullExtent& hull,
                       const HullSurroundingsConfig& config) {
-    if (config.environment == HullEnvironment::DryDock) add_dry_dock(builder, hull, config);
-    if (config.environment == HullEnvironment::Quay) add_quay(builder, hull, config);
+    if (config.environment == HullEnvironment::kDryDock) add_dry_dock(builder, hull, config);
+    if (config.environment == HullEnvironment::kQuay) add_quay(builder, hull, config);
 }
 
 std::vector<double> centred_positions(double x_min_m, double x_max_m, double spacing) {
@@ -87,29 +87,15 @@ std::vector<double> centred_positions(double x_min_m, double x_max_m, double spa
     return xs;
 }
 
-void require(bool ok, std::string_view prefix, std::string_view field, double value,
-             std::string_view expected) {
-    if (!ok)
-        throw ConfigError(fmt::format("{}.{} = {}, expected {}", prefix, field, value, expected));
-}
-
-void require_positive(std::string_view prefix, std::string_view field, double value) {
-    require(std::isfinite(value) && value > 0.0, prefix, field, value, "> 0");
-}
-
-void require_non_negative(std::string_view prefix, std::string_view field, double value) {
-    require(std::isfinite(value) && value >= 0.0, prefix, field, value, ">= 0");
-}
-
 }  // namespace scantling::sim::detail
 
 namespace scantling::sim {
 
 void HullSurroundingsConfig::validate(std::string_view prefix) const {
     using detail::require_positive;
-    detail::require(environment == HullEnvironment::None ||
-                        environment == HullEnvironment::DryDock ||
-                        environment == HullEnvironment::Quay,
+    detail::require(environment == HullEnvironment::kNone ||
+                        environment == HullEnvironment::kDryDock ||
+                        environment == HullEnvironment::kQuay,
                     prefix, "environment", static_cast<int>(environment), "none, dry_dock or quay");
     detail::require_non_negative(prefix, "end_margin_m", end_margin_m);
     require_positive(prefix, "wall_clearance_m", wall_clearance_m);
@@ -138,11 +124,11 @@ void HullSurroundingsConfig::validate(std::string_view prefix) const {
 
 std::string_view to_string(HullEnvironment environment) {
     switch (environment) {
-        case HullEnvironment::None:
+        case HullEnvironment::kNone:
             return "none";
-        case HullEnvironment::DryDock:
+        case HullEnvironment::kDryDock:
             return "dry_dock";
-        case HullEnvironment::Quay:
+        case HullEnvironment::kQuay:
             return "quay";
     }
     return "unknown";

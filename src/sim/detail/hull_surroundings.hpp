@@ -1,8 +1,9 @@
 #pragma once
-// Dry dock and quay around a hull, shared by the parametric and the mesh hull worlds, and the
-// validation helpers of world_hull.hpp (private to the simulator).
+// Dry dock and quay around a hull, shared by the parametric and the mesh hull worlds (private
+// to the simulator). Config checks come from sensor_checks.hpp.
 
 #include "mesh_builder.hpp"
+#include "sensor_checks.hpp"
 
 #include <scantling/sim/world_hull.hpp>
 
@@ -27,13 +28,5 @@ void add_surroundings(MeshBuilder& builder, const HullExtent& hull,
 /// Positions every spacing_m along [x_min, x_max] (as many as fit), centred in that range: keel
 /// blocks, bollards.
 std::vector<double> centred_positions(double x_min_m, double x_max_m, double spacing_m);
-
-/// Throws ConfigError("<prefix>.<field> = <value>, expected <expected>") unless ok.
-void require(bool ok, std::string_view prefix, std::string_view field, double value,
-             std::string_view expected);
-/// Finite and > 0.
-void require_positive(std::string_view prefix, std::string_view field, double value);
-/// Finite and >= 0.
-void require_non_negative(std::string_view prefix, std::string_view field, double value);
 
 }  // namespace scantling::sim::detail

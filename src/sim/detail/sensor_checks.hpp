@@ -1,5 +1,5 @@
 #pragma once
-// Config checks shared by the sensor models: each throws ConfigError
+// Config checks shared by the simulator (sensors, vehicles, worlds): each throws ConfigError
 // "<prefix>.<field> = <value>, expected <what>".
 
 #include <string>
