@@ -1,0 +1,163 @@
+// Reader of simulator recordings (recording.hpp).
+#include <scantling/io/recording.hpp>
+
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include <scantling/core/error.hpp>
+#include <scantling/io/kitti.hpp>
+#include <scantling/io/ply.hpp>
+
+namespace scantling::io {
+namespace fs = std::filesystem;
+namespace layout = recording_layout;
+
+namespace {
+
+std::string join(const std::string& a, const std::string& b) { return (fs::path(a) / b).string(); }
+
+/// The stamps and poses of a frame folder, or an empty index when the folder is absent.
+FrameIndex read_frame_index(const std::string& directory, const char* folder) {
+    FrameIndex index;
+    const std::string dir = join(directory, folder);
+    if (!fs::is_directory(dir)) return index;
+    index.directory = dir;
+    const std::string times = join(dir, layout::kTimes), poses = join(dir, layout::kPoses);
+    index.stamps_s = read_stamps(times);
+    index.poses_gt = read_kitti_poses(poses);
+    if (index.poses_gt.size() != index.stamps_s.size()) {
+        throw ParseError(poses, FileLocation{},
+                         fmt::format("{} poses but {} has {} stamps", index.poses_gt.size(), times,
+                                     index.stamps_s.size()));
+    }
+    return index;
+}
+
+void check_index(std::size_t i, std::size_t size, const char* what) {
+    if (i >= size) {
+        throw InputError(fmt::format("{} index {} out of range (recording has {})", what, i, size));
+    }
+}
+
+std::string frame_path(const FrameIndex& index, std::size_t i, const char* extension) {
+    return join(index.directory, layout::frame_stem(i) + extension);
+}
+
+}  // namespace
+
+PointCloud Recording::read_sweep(std::size_t i) const {
+    check_index(i, lidar_.size(), "sweep");
+    const std::string ply = frame_path(lidar_, i, ".ply");
+    // The PLY carries rings and times besides what the .bin holds (same float32 values).
+    PointCloud sweep =
+        fs::exists(ply) ? read_ply(ply).cloud : read_kitti_bin(frame_path(lidar_, i, ".bin"));
+    sweep.stamp_s = lidar_.stamps_s[i];
+    return sweep;
+}
+
+double Recording::sweep_stamp_s(std::size_t i) const {
+    check_index(i, lidar_.size(), "sweep");
+    return lidar_.stamps_s[i];
+}
+
+const Eigen::Isometry3d& Recording::sweep_pose_gt(std::size_t i) const {
+    check_index(i, lidar_.size(), "sweep");
+    return lidar_.poses_gt[i];
+}
+
+PointCloud Recording::read_depth_frame(std::size_t i) const {
+    check_index(i, depth_.size(), "depth frame");
+    PointCloud frame = read_ply(frame_path(depth_, i, ".ply")).cloud;
+    frame.stamp_s = depth_.stamps_s[i];
+    return frame;
+}
+
+std::string Recording::image_path(std::size_t i) const {
+    check_index(i, images_.size(), "image");
+    return frame_path(images_, i, ".png");
+}
+
+PointCloud Recording::read_rosette_frame(std::size_t i) const {
+    check_index(i, rosette_.size(), "rosette frame");
+    const std::string bin = frame_path(rosette_, i, ".bin");
+    // An empty frame has no .bin (KITTI readers reject it), only a .ply.
+    PointCloud frame =
+        fs::exists(bin) ? read_kitti_bin(bin) : read_ply(frame_path(rosette_, i, ".ply")).cloud;
+    frame.stamp_s = rosette_.stamps_s[i];
+    return frame;
+}
+
+PointCloud Recording::read_stereo_frame(std::size_t i) const {
+    check_index(i, stereo_.size(), "stereo frame");
+    PointCloud frame = read_ply(frame_path(stereo_, i, ".ply")).cloud;
+    frame.stamp_s = stereo_.stamps_s[i];
+    return frame;
+}
+
+std::vector<float> Recording::read_sonar_intensity(std::size_t i) const {
+    check_index(i, sonar_.size(), "sonar ping");
+    const std::string path = frame_path(sonar_, i, ".bin");
+    std::ifstream in(path, std::ios::binary | std::ios::ate);
+    if (!in) throw FileError(path, "cannot open sonar ping");
+    const auto bytes = static_cast<std::size_t>(in.tellg());
+    if (bytes % sizeof(float) != 0) {
+        throw ParseError(path, FileLocation{},
+                         fmt::format("size {} bytes is not a multiple of 4 (float32)", bytes));
+    }
+    std::vector<float> intensity(bytes / sizeof(float));
+    in.seekg(0);
+    in.read(reinterpret_cast<char*>(intensity.data()), static_cast<std::streamsize>(bytes));
+    return intensity;
+}
+
+std::string Recording::world_map_path() const {
+    return join(join(directory_, layout::kWorldDir), "map.ply");
+}
+
+std::string Recording::world_mesh_path() const {
+    return join(join(directory_, layout::kWorldDir), "mesh.ply");
+}
+
+std::string Recording::world_metadata_path() const {
+    return join(join(directory_, layout::kWorldDir), "metadata.json");
+}
+
+Recording open_recording(const std::string& directory) {
+    if (!fs::is_directory(directory)) throw FileError(directory, "recording directory not found");
+    const std::string ground_truth = join(directory, layout::kGroundTruth);
+    if (!fs::exists(ground_truth)) {
+        throw FileError(ground_truth, "missing: not a scantling recording (no ground truth)");
+    }
+    Recording recording;
+    recording.directory_ = directory;
+    recording.ground_truth_ = read_tum(ground_truth);
+    recording.lidar_ = read_frame_index(directory, layout::kLidarDir);
+    recording.depth_ = read_frame_index(directory, layout::kDepthDir);
+    recording.images_ = read_frame_index(directory, layout::kImagesDir);
+    const std::string extrinsic = join(join(directory, layout::kLidarDir), layout::kExtrinsic);
+    if (fs::exists(extrinsic)) recording.lidar_T_body_sensor_ = read_kitti_poses(extrinsic).at(0);
+    const std::string imu = join(directory, layout::kImu), vio = join(directory, layout::kVio);
+    if (fs::exists(imu)) recording.imu_ = read_imu_csv(imu);
+    if (fs::exists(vio)) recording.vio_ = read_vio_csv(vio);
+    recording.read_extra_streams(directory);
+    return recording;
+}
+
+void Recording::read_extra_streams(const std::string& directory) {
+    rosette_ = read_frame_index(directory, layout::kRosetteDir);
+    stereo_ = read_frame_index(directory, layout::kStereoDir);
+    sonar_ = read_frame_index(directory, layout::kSonarDir);
+    const auto read_if = [&directory](const char* name, auto reader, auto& out) {
+        const std::string path = join(directory, name);
+        if (fs::exists(path)) out = reader(path);
+    };
+    read_if(layout::kRange, &read_range_csv, range_);
+    read_if(layout::kUwb, &read_uwb_csv, uwb_);
+    read_if(layout::kPressure, &read_pressure_csv, pressure_);
+    read_if(layout::kDvl, &read_dvl_csv, dvl_);
+    read_if(layout::kWheelOdometry, &read_wheel_odometry_csv, wheel_odometry_);
+}
+
+}  // namespace scantling::io

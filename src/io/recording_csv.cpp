@@ -1,0 +1,142 @@
+// Text files of a simulator recording: stamps, IMU and VIO CSVs (recording.hpp).
+#include <fmt/format.h>
+
+#include <scantling/core/error.hpp>
+#include <scantling/io/recording.hpp>
+
+#include "detail/text_lines.hpp"
+
+namespace scantling::io {
+namespace {
+
+using detail::LineContext;
+using detail::TextLine;
+
+FileLocation at_line(int line) {
+    FileLocation location;
+    location.line = line;
+    return location;
+}
+
+std::vector<std::string_view> split_commas(std::string_view text) {
+    std::vector<std::string_view> fields;
+    std::size_t start = 0;
+    while (true) {
+        const std::size_t comma = text.find(',', start);
+        fields.push_back(detail::trim(text.substr(start, comma - start)));
+        if (comma == std::string_view::npos) return fields;
+        start = comma + 1;
+    }
+}
+
+/// Every non-blank line after the header as parsed numbers, `columns` per line.
+template <class Row>
+std::vector<Row> read_csv(const std::string& path, std::string_view header, std::size_t columns,
+                          Row (*make)(const std::vector<double>&),
+                          detail::NonFinite non_finite = detail::NonFinite::kReject) {
+    const std::string text = detail::read_whole_file(path);
+    detail::LineReader reader(text);
+    TextLine line;
+    if (!reader.next(line) || detail::trim(line.text) != header) {
+        throw ParseError(path, at_line(1), fmt::format("expected the header '{}'", header));
+    }
+    std::vector<Row> rows;
+    std::vector<double> values(columns);
+    while (reader.next(line)) {
+        if (detail::trim(line.text).empty()) continue;
+        const std::vector<std::string_view> fields = split_commas(line.text);
+        const LineContext where{path, line};
+        if (fields.size() != columns) {
+            throw ParseError(
+                path, at_line(line.number),
+                fmt::format("expected {} comma-separated values, got {}", columns, fields.size()));
+        }
+        for (std::size_t c = 0; c < columns; ++c)
+            values[c] = detail::parse_double(fields[c], where, non_finite);
+        rows.push_back(make(values));
+    }
+    return rows;
+}
+
+ImuRecord make_imu(const std::vector<double>& v) {
+    return ImuRecord{v[0], Eigen::Vector3d(v[1], v[2], v[3]), Eigen::Vector3d(v[4], v[5], v[6])};
+}
+
+VioRecord make_vio(const std::vector<double>& v) {
+    VioRecord record;
+    record.stamp_s = v[0];
+    record.valid = v[1] != 0.0;
+    const Eigen::Quaterniond q(v[8], v[5], v[6], v[7]);  // w, x, y, z
+    record.T_odom_body.linear() = q.normalized().toRotationMatrix();
+    record.T_odom_body.translation() = Eigen::Vector3d(v[2], v[3], v[4]);
+    record.v_body_mps = Eigen::Vector3d(v[9], v[10], v[11]);
+    for (int k = 0; k < 6; ++k) record.variances[k] = v[12 + static_cast<std::size_t>(k)];
+    return record;
+}
+
+RangeRecord make_range(const std::vector<double>& v) { return {v[0], v[1] != 0.0, v[2]}; }
+
+UwbRecord make_uwb(const std::vector<double>& v) {
+    return {v[0], static_cast<int>(v[1]), v[2], v[3] != 0.0, v[4] != 0.0};
+}
+
+PressureRecord make_pressure(const std::vector<double>& v) { return {v[0], v[1], v[2]}; }
+
+DvlRecord make_dvl(const std::vector<double>& v) {
+    return {v[0], v[1] != 0.0, Eigen::Vector3d(v[2], v[3], v[4]), v[5]};
+}
+
+WheelOdometryRecord make_wheel(const std::vector<double>& v) {
+    return {v[0], v[1], v[2], v[3] != 0.0};
+}
+
+// Invalid readings are written as "nan", so these files allow non-finite numbers.
+constexpr detail::NonFinite kAllowNan = detail::NonFinite::kAllow;
+
+}  // namespace
+
+std::vector<RangeRecord> read_range_csv(const std::string& path) {
+    return read_csv<RangeRecord>(path, recording_layout::kRangeHeader, 3, &make_range, kAllowNan);
+}
+
+std::vector<UwbRecord> read_uwb_csv(const std::string& path) {
+    return read_csv<UwbRecord>(path, recording_layout::kUwbHeader, 5, &make_uwb, kAllowNan);
+}
+
+std::vector<PressureRecord> read_pressure_csv(const std::string& path) {
+    return read_csv<PressureRecord>(path, recording_layout::kPressureHeader, 3, &make_pressure);
+}
+
+std::vector<DvlRecord> read_dvl_csv(const std::string& path) {
+    return read_csv<DvlRecord>(path, recording_layout::kDvlHeader, 6, &make_dvl, kAllowNan);
+}
+
+std::vector<WheelOdometryRecord> read_wheel_odometry_csv(const std::string& path) {
+    return read_csv<WheelOdometryRecord>(path, recording_layout::kWheelOdometryHeader, 4,
+                                         &make_wheel);
+}
+
+std::string recording_layout::frame_stem(std::size_t index) { return fmt::format("{:06d}", index); }
+
+std::vector<ImuRecord> read_imu_csv(const std::string& path) {
+    return read_csv<ImuRecord>(path, recording_layout::kImuHeader, 7, &make_imu);
+}
+
+std::vector<VioRecord> read_vio_csv(const std::string& path) {
+    return read_csv<VioRecord>(path, recording_layout::kVioHeader, 18, &make_vio);
+}
+
+std::vector<double> read_stamps(const std::string& path) {
+    const std::string text = detail::read_whole_file(path);
+    detail::LineReader reader(text);
+    TextLine line;
+    std::vector<double> stamps;
+    while (reader.next(line)) {
+        const std::string_view token = detail::trim(line.text);
+        if (token.empty()) continue;
+        stamps.push_back(detail::parse_double(token, LineContext{path, line}));
+    }
+    return stamps;
+}
+
+}  // namespace scantling::io

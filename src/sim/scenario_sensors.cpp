@@ -1,0 +1,218 @@
+// The sensors a scenario drives (detail/scenario_parts.hpp).
+#include <cmath>
+#include <string>
+
+#include <scantling/core/error.hpp>
+#include <scantling/sim/depth_camera.hpp>
+#include <scantling/sim/imu.hpp>
+#include <scantling/sim/pinhole_camera.hpp>
+#include <scantling/sim/spinning_lidar.hpp>
+#include <scantling/sim/vio.hpp>
+
+#include "detail/scenario_parts.hpp"
+
+namespace scantling::sim::detail {
+namespace {
+
+[[noreturn]] void bad_preset(const std::string& prefix) {
+    throw ConfigError(prefix + ".preset does not apply to this sensor type");
+}
+
+SpinningLidarConfig lidar_config(const SensorSpec& spec, const std::string& prefix) {
+    SpinningLidarConfig config;
+    if (spec.preset == SensorPreset::kDefault || spec.preset == SensorPreset::kOs1_64) {
+        config = ouster_os1_64(spec.columns > 0 ? spec.columns : 1024,
+                               spec.rate_hz > 0.0 ? spec.rate_hz : 10.0);
+    } else if (spec.preset == SensorPreset::kHdl64e) {
+        config = velodyne_hdl64e();
+        if (spec.columns > 0) config.columns = spec.columns;
+        if (spec.rate_hz > 0.0) config.rate_hz = spec.rate_hz;
+    } else {
+        bad_preset(prefix);
+    }
+    if (!spec.noise) config.returns = ReturnModel{};
+    config.T_body_sensor = spec.T_body_sensor.to_isometry();
+    config.validate(prefix);
+    return config;
+}
+
+class LidarSensor : public ScenarioSensor {
+  public:
+    LidarSensor(const SensorSpec& spec, Rng rng, const std::string& prefix)
+        : lidar_(lidar_config(spec, prefix)),
+          rng_(std::move(rng)),
+          motion_distortion_(spec.motion_distortion),
+          write_ply_(spec.write_ply || spec.motion_distortion) {}
+    double rate_hz() const override { return lidar_.config().rate_hz; }
+    void fire(const FireContext& c) override {
+        const Eigen::Isometry3d T_world_body = c.vehicle.pose_at(c.stamp_s);
+        PointCloud sweep;
+        if (motion_distortion_) {
+            const auto pose_at = [&c](double t_s) { return c.vehicle.pose_at(t_s); };
+            sweep = lidar_.scan_moving(c.scene, pose_at, c.stamp_s, rng_, c.parallel);
+            sweep.stamp_s = c.stamp_s;
+        } else {
+            sweep = lidar_.scan(c.scene, T_world_body, rng_, c.stamp_s, c.parallel);
+        }
+        if (c.writer.counts().lidar_sweeps == 0) {
+            c.writer.set_lidar_extrinsic(lidar_.config().T_body_sensor);
+        }
+        c.writer.add_lidar_sweep(sweep, T_world_body * lidar_.config().T_body_sensor, write_ply_);
+    }
+
+  private:
+    SpinningLidar lidar_;
+    Rng rng_;
+    bool motion_distortion_;
+    bool write_ply_;
+};
+
+ImuConfig imu_config(const SensorSpec& spec, const std::string& prefix) {
+    ImuConfig config;
+    if (spec.preset == SensorPreset::kDefault || spec.preset == SensorPreset::kConsumerMems) {
+        config = consumer_mems_imu();
+    } else if (spec.preset == SensorPreset::kIndustrialMems) {
+        config = industrial_mems_imu();
+    } else {
+        bad_preset(prefix);
+    }
+    if (!spec.noise) config = noiseless(config);
+    if (spec.rate_hz > 0.0) config.rate_hz = spec.rate_hz;
+    config.T_body_sensor = spec.T_body_sensor.to_isometry();
+    config.validate(prefix);
+    return config;
+}
+
+class ImuSensor : public ScenarioSensor {
+  public:
+    ImuSensor(const SensorSpec& spec, Rng rng, const std::string& prefix)
+        : rng_(std::move(rng)), imu_(imu_config(spec, prefix), rng_) {}
+    double rate_hz() const override { return imu_.config().rate_hz; }
+    void fire(const FireContext& c) override {
+        c.writer.add_imu(imu_.measure(c.vehicle.at_tick(c.tick), rng_));
+    }
+
+  private:
+    Rng rng_;
+    ImuSimulator imu_;
+};
+
+VioConfig vio_config(const SensorSpec& spec, const std::string& prefix) {
+    if (spec.preset != SensorPreset::kDefault && spec.preset != SensorPreset::kT265) {
+        bad_preset(prefix);
+    }
+    VioConfig config = spec.noise ? VioConfig{} : noiseless(VioConfig{});
+    if (spec.rate_hz > 0.0) config.rate_hz = spec.rate_hz;
+    config.validate(prefix);
+    return config;
+}
+
+class VioSensor : public ScenarioSensor {
+  public:
+    VioSensor(const SensorSpec& spec, Rng rng, const std::string& prefix)
+        : vio_(vio_config(spec, prefix)), rng_(std::move(rng)) {}
+    double rate_hz() const override { return vio_.config().rate_hz; }
+    void fire(const FireContext& c) override {
+        // Full feature quality: the scenario does not model lighting yet.
+        c.writer.add_vio(vio_.step(c.vehicle.at_tick(c.tick), 1.0, rng_));
+    }
+
+  private:
+    VioSimulator vio_;
+    Rng rng_;
+};
+
+DepthCameraConfig depth_config(const SensorSpec& spec, const std::string& prefix) {
+    DepthCameraConfig config;
+    if (spec.preset == SensorPreset::kDefault || spec.preset == SensorPreset::kL515) {
+        config = intel_l515(spec.width > 0 ? spec.width : 640);
+    } else if (spec.preset == SensorPreset::kAzureNfov ||
+               spec.preset == SensorPreset::kAzureNfovBinned) {
+        config = azure_kinect_nfov(spec.preset == SensorPreset::kAzureNfovBinned);
+    } else {
+        bad_preset(prefix);
+    }
+    if (!spec.noise) config.depth_noise = ReturnModel{};
+    if (spec.rate_hz > 0.0) config.rate_hz = spec.rate_hz;
+    config.T_body_sensor = spec.T_body_sensor.to_isometry();
+    config.validate(prefix);
+    return config;
+}
+
+class DepthSensor : public ScenarioSensor {
+  public:
+    DepthSensor(const SensorSpec& spec, Rng rng, const std::string& prefix)
+        : camera_(depth_config(spec, prefix)), rng_(std::move(rng)) {}
+    double rate_hz() const override { return camera_.config().rate_hz; }
+    void fire(const FireContext& c) override {
+        const Eigen::Isometry3d T_world_body = c.vehicle.pose_at(c.stamp_s);
+        const PointCloud frame = camera_.scan(c.scene, T_world_body, rng_, c.stamp_s, c.parallel);
+        c.writer.add_depth_frame(frame, T_world_body * camera_.config().T_body_sensor);
+    }
+
+  private:
+    DepthCamera camera_;
+    Rng rng_;
+};
+
+PinholeCameraConfig camera_config(const SensorSpec& spec, const std::string& prefix) {
+    PinholeCameraConfig config;
+    if (spec.preset == SensorPreset::kDefault || spec.preset == SensorPreset::kUav3d) {
+        config = uav3d_camera();
+    } else if (spec.preset == SensorPreset::kRov) {
+        config = rov_camera();
+    } else {
+        bad_preset(prefix);
+    }
+    if (spec.width > 0) {
+        const PinholeIntrinsics& k = config.intrinsics;
+        const int height =
+            spec.height > 0 ? spec.height
+                            : static_cast<int>(std::lround(1.0 * spec.width * k.height / k.width));
+        config.intrinsics =
+            PinholeIntrinsics::from_fov(spec.width, height, k.hfov_rad(), k.vfov_rad());
+    }
+    if (!spec.noise) config.pixel_noise_dn = 0.0;
+    if (spec.rate_hz > 0.0) config.rate_hz = spec.rate_hz;
+    config.T_body_sensor = spec.T_body_sensor.to_isometry();
+    config.validate(prefix);
+    return config;
+}
+
+class CameraSensor : public ScenarioSensor {
+  public:
+    CameraSensor(const SensorSpec& spec, Rng rng, const std::string& prefix)
+        : camera_(camera_config(spec, prefix)), rng_(std::move(rng)) {}
+    double rate_hz() const override { return camera_.config().rate_hz; }
+    void fire(const FireContext& c) override {
+        const Eigen::Isometry3d T_world_body = c.vehicle.pose_at(c.stamp_s);
+        const RgbImage image = camera_.render(c.scene, T_world_body, rng_, c.parallel);
+        c.writer.add_image(image, c.stamp_s, T_world_body * camera_.config().T_body_sensor);
+    }
+
+  private:
+    PinholeCamera camera_;
+    Rng rng_;
+};
+
+}  // namespace
+
+std::unique_ptr<ScenarioSensor> make_sensor(const SensorSpec& spec, Rng rng,
+                                            const std::string& prefix) {
+    switch (spec.type) {
+        case SensorType::kSpinningLidar:
+            return std::make_unique<LidarSensor>(spec, std::move(rng), prefix);
+        case SensorType::kImu:
+            return std::make_unique<ImuSensor>(spec, std::move(rng), prefix);
+        case SensorType::kVio:
+            return std::make_unique<VioSensor>(spec, std::move(rng), prefix);
+        case SensorType::kDepthCamera:
+            return std::make_unique<DepthSensor>(spec, std::move(rng), prefix);
+        case SensorType::kCamera:
+            return std::make_unique<CameraSensor>(spec, std::move(rng), prefix);
+        default:
+            return make_imaging_sensor(spec, std::move(rng), prefix);
+    }
+}
+
+}  // namespace scantling::sim::detail
