@@ -7,7 +7,7 @@ CMAKE_FLAGS ?=
 
 SOURCES = $(shell git ls-files '*.cpp' '*.hpp' 2>/dev/null || find include src apps tests bench -name '*.[ch]pp')
 
-.PHONY: all deps configure build run test bench format format-check lint clean
+.PHONY: all deps configure build build-app run test bench format format-check lint clean
 
 all: build
 
@@ -20,8 +20,17 @@ configure: deps
 build: configure
 	cmake --build $(BUILD_DIR) -j $(JOBS)
 
-run: build
-	./$(BUILD_DIR)/apps/scantling info $(BUILD_DIR)/example/room.pcd
+SCENARIO ?= scenarios/hull_sweep_os1.yaml
+RECORDING ?= $(BUILD_DIR)/recordings/$(basename $(notdir $(SCENARIO)))
+
+build-app: configure
+	cmake --build $(BUILD_DIR) -j $(JOBS) --target scantling scantling_example_cloud
+
+# The default job: simulate the default scenario (a drone sweeping a ship hull with an OS1-64).
+run: build-app
+	@start=$$(date +%s); \
+	./$(BUILD_DIR)/apps/scantling sim $(SCENARIO) --out $(RECORDING) --force && \
+	echo "make run: recording in $(RECORDING) ($$(( $$(date +%s) - start )) s); read it with scantling::io::open_recording"
 
 test: build
 	ctest --test-dir $(BUILD_DIR) --output-on-failure -j $(JOBS)

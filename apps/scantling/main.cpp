@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <cstdint>
 #include <cstdio>
 #include <exception>
 #include <iostream>
@@ -28,6 +29,18 @@ struct CommandLine {
     CLI::App* convert_cmd = nullptr;
     CLI::App* downsample_cmd = nullptr;
     CLI::Option* convert_voxel = nullptr;
+    scantling::app::SimOptions sim;
+    CLI::App* sim_cmd = nullptr;
+    CLI::Option* sim_seed = nullptr;
+    std::uint64_t seed = 0;
+    bool no_progress = false;
+    scantling::app::RegisterOptions reg;
+    CLI::App* register_cmd = nullptr;
+    CLI::Option* register_init = nullptr;
+    CLI::Option* register_voxel = nullptr;
+    CLI::Option* register_max_distance = nullptr;
+    std::string init_path;
+    double max_distance_m = 0.0;
 };
 
 int report_error(std::string message) {
@@ -51,6 +64,52 @@ void add_in_out(CLI::App& cmd, CommandLine& cl) {
         ->type_name("");
     cmd.add_flag("--ascii", cl.convert.ascii, "Write ascii PCD (.pcd output only; default binary)");
     add_threads_option(cmd, cl);
+}
+
+void define_sim(CLI::App& app, CommandLine& cl) {
+    cl.sim_cmd = app.add_subcommand("sim", "Run a simulation scenario and write its recording");
+    cl.sim_cmd->add_option("SCENARIO", cl.sim.scenario, "Scenario YAML (see scenarios/)")
+        ->required()
+        ->type_name("");
+    cl.sim_cmd->add_option("--out", cl.sim.out, "Recording directory (created)")
+        ->required()
+        ->type_name("DIR");
+    cl.sim_seed =
+        cl.sim_cmd->add_option("--seed", cl.seed, "Overrides the scenario's seed")->type_name("N");
+    cl.sim_cmd->add_flag("--force", cl.sim.force,
+                         "Write into a non-empty directory (replaces a recording there)");
+    cl.sim_cmd->add_flag("--no-progress", cl.no_progress, "No progress line on stderr");
+}
+
+void define_register(CLI::App& app, CommandLine& cl) {
+    auto* cmd = cl.register_cmd = app.add_subcommand(
+        "register", "Align SRC to TGT and write the 4x4 T_target_source to --out");
+    cmd->add_option("SRC", cl.reg.source, "Cloud to align (.pcd, .ply, .bin)")
+        ->required()
+        ->type_name("");
+    cmd->add_option("TGT", cl.reg.target, "Cloud to align it to")->required()->type_name("");
+    cmd->add_option("--method", cl.reg.method,
+                    "icp, p2plane, gicp (local, from --init), fpfh-teaser, fpfh-ransac (global), "
+                    "stein (particles around --init)")
+        ->required()
+        ->type_name("M");
+    cl.register_init = cmd->add_option("--init", cl.init_path,
+                                       "Initial T_target_source: 4 lines of 4 numbers (default "
+                                       "identity; local methods only)")
+                           ->type_name("FILE");
+    cl.register_voxel = cmd->add_option("--voxel", cl.voxel_size_m,
+                                        "Voxel edge in metres, >= 0 (0 = none; default 0.1 for "
+                                        "local methods, 0.05 for global ones)")
+                            ->type_name("SIZE_M");
+    cl.register_max_distance =
+        cmd->add_option("--max-distance", cl.max_distance_m,
+                        "Correspondence distance in metres (default: ICP 1, stein 0.5, "
+                        "refinement after a global method 2 voxels)")
+            ->type_name("M");
+    cmd->add_option("--out", cl.reg.out, "Output: the 4x4 T_target_source alone")
+        ->required()
+        ->type_name("FILE");
+    add_threads_option(*cmd, cl);
 }
 
 void define_commands(CLI::App& app, CommandLine& cl) {
@@ -84,6 +143,8 @@ void define_commands(CLI::App& app, CommandLine& cl) {
     cl.downsample_cmd->add_option("--voxel", cl.voxel_size_m, "Voxel edge in metres (> 0)")
         ->required()
         ->type_name("SIZE_M");
+    define_sim(app, cl);
+    define_register(app, cl);
     // Set last: subcommands created after it would inherit it.
     app.footer("Run 'scantling SUBCOMMAND --help' for the options of a subcommand.");
 }
@@ -98,6 +159,19 @@ void set_up_logging(bool verbose) {
 void run(CommandLine& cl) {
     cl.convert.num_threads = cl.num_threads;
     if (cl.info_cmd->parsed()) return scantling::app::run_info(cl.info, std::cout);
+    if (cl.sim_cmd->parsed()) {
+        if (cl.sim_seed->count() > 0) cl.sim.seed = cl.seed;
+        cl.sim.progress = !cl.no_progress;
+        cl.sim.num_threads = cl.num_threads;
+        return scantling::app::run_sim(cl.sim, std::cout);
+    }
+    if (cl.register_cmd->parsed()) {
+        if (cl.register_init->count() > 0) cl.reg.init_path = cl.init_path;
+        if (cl.register_voxel->count() > 0) cl.reg.voxel_size_m = cl.voxel_size_m;
+        if (cl.register_max_distance->count() > 0) cl.reg.max_distance_m = cl.max_distance_m;
+        cl.reg.num_threads = cl.num_threads;
+        return scantling::app::run_register(cl.reg, std::cout);
+    }
     if (cl.downsample_cmd->parsed() || cl.convert_voxel->count() > 0) {
         cl.convert.voxel_size_m = cl.voxel_size_m;
     }
@@ -112,7 +186,8 @@ int run_main(int argc, char** argv) {
         define_commands(app, cl);
         app.parse(argc, argv);
         if (app.get_subcommands().empty()) {
-            return report_error("a subcommand is required: info, convert or downsample" + kSeeHelp);
+            return report_error(
+                "a subcommand is required: info, convert, downsample, sim or register" + kSeeHelp);
         }
     } catch (const CLI::Success& e) {
         return app.exit(e);  // --help, --version: printed on stdout, exit 0

@@ -1,0 +1,75 @@
+// The --init file of `scantling register`: a 4×4 rigid transform as text.
+#include <fmt/format.h>
+
+#include <array>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include <Eigen/SVD>
+
+#include <scantling/core/error.hpp>
+
+#include "scantling/commands.hpp"
+
+namespace scantling::app {
+namespace {
+
+/// An --init rotation further than this from orthonormal (Frobenius norm of RᵀR − I) is a typo,
+/// not rounding of printed digits; closer ones are projected onto SO(3).
+constexpr double kMaxInitOrthonormalityError = 1e-3;
+
+FileLocation at_line(int line) { return {.byte_offset = {}, .line = line, .column = {}}; }
+
+std::array<double, 4> parse_row(const std::string& line, const std::string& path, int line_no) {
+    std::istringstream in(line);
+    std::array<double, 4> row{};
+    for (double& v : row) {
+        if (!(in >> v) || !std::isfinite(v)) {
+            throw ParseError(path, at_line(line_no), "expected 4 finite numbers (a matrix row)");
+        }
+    }
+    std::string rest;
+    if (in >> rest) throw ParseError(path, at_line(line_no), "more than 4 numbers on the line");
+    return row;
+}
+
+Eigen::Isometry3d rigid_from(Eigen::Matrix4d M, const std::string& path) {
+    if ((M.row(3) - Eigen::RowVector4d(0, 0, 0, 1)).norm() > 1e-9) {
+        throw ParseError(path, at_line(4), "expected the last row 0 0 0 1");
+    }
+    const Eigen::Matrix3d R = M.topLeftCorner<3, 3>();
+    if ((R.transpose() * R - Eigen::Matrix3d::Identity()).norm() > kMaxInitOrthonormalityError ||
+        R.determinant() < 0.0) {
+        throw ParseError(path, at_line(1), "lines 1-3 do not hold a rotation (orthonormal, det 1)");
+    }
+    Eigen::JacobiSVD<Eigen::Matrix3d> svd(R, Eigen::ComputeFullU | Eigen::ComputeFullV);
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.linear() = svd.matrixU() * svd.matrixV().transpose();
+    T.translation() = M.topRightCorner<3, 1>();
+    return T;
+}
+
+}  // namespace
+
+Eigen::Isometry3d read_transform_file(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) throw FileError(path, "cannot open the --init file");
+    Eigen::Matrix4d M;
+    int rows = 0, line_no = 0;
+    for (std::string line; std::getline(in, line);) {
+        ++line_no;
+        if (line.find_first_not_of(" \t\r") == std::string::npos || line[0] == '#') continue;
+        if (rows == 4) throw ParseError(path, at_line(line_no), "more than 4 matrix rows");
+        const auto row = parse_row(line, path, line_no);
+        for (int c = 0; c < 4; ++c) M(rows, c) = row[c];
+        ++rows;
+    }
+    if (rows < 4) {
+        throw ParseError(path, at_line(line_no + 1),
+                         fmt::format("{} matrix rows, expected 4 lines of 4 numbers", rows));
+    }
+    return rigid_from(M, path);
+}
+
+}  // namespace scantling::app
