@@ -136,6 +136,7 @@ Recording open_recording(const std::string& directory) {
     recording.lidar_ = read_frame_index(directory, layout::kLidarDir);
     recording.depth_ = read_frame_index(directory, layout::kDepthDir);
     recording.images_ = read_frame_index(directory, layout::kImagesDir);
+    recording.read_visible_defects();
     const std::string extrinsic = join(join(directory, layout::kLidarDir), layout::kExtrinsic);
     if (fs::exists(extrinsic)) recording.lidar_T_body_sensor_ = read_kitti_poses(extrinsic).at(0);
     const std::string imu = join(directory, layout::kImu), vio = join(directory, layout::kVio);
@@ -143,6 +144,18 @@ Recording open_recording(const std::string& directory) {
     if (fs::exists(vio)) recording.vio_ = read_vio_csv(vio);
     recording.read_extra_streams(directory);
     return recording;
+}
+
+void Recording::read_visible_defects() {
+    if (images_.directory.empty()) return;
+    const std::string path = join(images_.directory, layout::kVisibleDefects);
+    if (!fs::exists(path)) return;
+    image_visible_defects_ = read_visible_defects_csv(path);
+    if (image_visible_defects_.size() != images_.size()) {
+        throw ParseError(path, FileLocation{},
+                         fmt::format("{} rows but {} has {} stamps", image_visible_defects_.size(),
+                                     join(images_.directory, layout::kTimes), images_.size()));
+    }
 }
 
 void Recording::read_extra_streams(const std::string& directory) {

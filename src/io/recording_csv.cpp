@@ -1,6 +1,9 @@
 // Text files of a simulator recording: stamps, IMU and VIO CSVs (recording.hpp).
 #include <fmt/format.h>
 
+#include <cstdint>
+#include <initializer_list>
+
 #include <scantling/core/error.hpp>
 #include <scantling/io/recording.hpp>
 
@@ -29,19 +32,30 @@ std::vector<std::string_view> split_commas(std::string_view text) {
     }
 }
 
-/// Every non-blank line after the header as parsed numbers, `columns` per line.
+/// The header among `headers` that the first line of `reader` matches (ParseError otherwise).
+std::string_view match_header(const std::string& path, detail::LineReader& reader,
+                              std::initializer_list<std::string_view> headers) {
+    TextLine line;
+    if (reader.next(line)) {
+        for (std::string_view header : headers) {
+            if (detail::trim(line.text) == header) return header;
+        }
+    }
+    throw ParseError(path, at_line(1), fmt::format("expected the header '{}'", *headers.begin()));
+}
+
+/// Every non-blank line after the header as parsed numbers, one per column of the header
+/// found (any of `headers`).
 template <class Row>
-std::vector<Row> read_csv(const std::string& path, std::string_view header, std::size_t columns,
+std::vector<Row> read_csv(const std::string& path, std::initializer_list<std::string_view> headers,
                           Row (*make)(const std::vector<double>&),
                           detail::NonFinite non_finite = detail::NonFinite::kReject) {
     const std::string text = detail::read_whole_file(path);
     detail::LineReader reader(text);
-    TextLine line;
-    if (!reader.next(line) || detail::trim(line.text) != header) {
-        throw ParseError(path, at_line(1), fmt::format("expected the header '{}'", header));
-    }
+    const std::size_t columns = split_commas(match_header(path, reader, headers)).size();
     std::vector<Row> rows;
     std::vector<double> values(columns);
+    TextLine line;
     while (reader.next(line)) {
         if (detail::trim(line.text).empty()) continue;
         const std::vector<std::string_view> fields = split_commas(line.text);
@@ -71,7 +85,22 @@ VioRecord make_vio(const std::vector<double>& v) {
     record.T_odom_body.translation() = Eigen::Vector3d(v[2], v[3], v[4]);
     record.v_body_mps = Eigen::Vector3d(v[9], v[10], v[11]);
     for (int k = 0; k < 6; ++k) record.variances[k] = v[12 + static_cast<std::size_t>(k)];
+    if (v.size() > 18) record.feature_quality = v[18];
     return record;
+}
+
+/// "3;7;12" → {3, 7, 12}; "" → {}.
+std::vector<int> parse_ids(std::string_view field, const LineContext& where) {
+    std::vector<int> ids;
+    if (field.empty()) return ids;
+    std::size_t start = 0;
+    while (true) {
+        const std::size_t semicolon = field.find(';', start);
+        const std::string_view token = detail::trim(field.substr(start, semicolon - start));
+        ids.push_back(static_cast<int>(detail::parse_int(token, where)));
+        if (semicolon == std::string_view::npos) return ids;
+        start = semicolon + 1;
+    }
 }
 
 RangeRecord make_range(const std::vector<double>& v) { return {v[0], v[1] != 0.0, v[2]}; }
@@ -96,34 +125,61 @@ constexpr detail::NonFinite kAllowNan = detail::NonFinite::kAllow;
 }  // namespace
 
 std::vector<RangeRecord> read_range_csv(const std::string& path) {
-    return read_csv<RangeRecord>(path, recording_layout::kRangeHeader, 3, &make_range, kAllowNan);
+    return read_csv<RangeRecord>(path, {recording_layout::kRangeHeader}, &make_range, kAllowNan);
 }
 
 std::vector<UwbRecord> read_uwb_csv(const std::string& path) {
-    return read_csv<UwbRecord>(path, recording_layout::kUwbHeader, 5, &make_uwb, kAllowNan);
+    return read_csv<UwbRecord>(path, {recording_layout::kUwbHeader}, &make_uwb, kAllowNan);
 }
 
 std::vector<PressureRecord> read_pressure_csv(const std::string& path) {
-    return read_csv<PressureRecord>(path, recording_layout::kPressureHeader, 3, &make_pressure);
+    return read_csv<PressureRecord>(path, {recording_layout::kPressureHeader}, &make_pressure);
 }
 
 std::vector<DvlRecord> read_dvl_csv(const std::string& path) {
-    return read_csv<DvlRecord>(path, recording_layout::kDvlHeader, 6, &make_dvl, kAllowNan);
+    return read_csv<DvlRecord>(path, {recording_layout::kDvlHeader}, &make_dvl, kAllowNan);
 }
 
 std::vector<WheelOdometryRecord> read_wheel_odometry_csv(const std::string& path) {
-    return read_csv<WheelOdometryRecord>(path, recording_layout::kWheelOdometryHeader, 4,
+    return read_csv<WheelOdometryRecord>(path, {recording_layout::kWheelOdometryHeader},
                                          &make_wheel);
 }
 
 std::string recording_layout::frame_stem(std::size_t index) { return fmt::format("{:06d}", index); }
 
 std::vector<ImuRecord> read_imu_csv(const std::string& path) {
-    return read_csv<ImuRecord>(path, recording_layout::kImuHeader, 7, &make_imu);
+    return read_csv<ImuRecord>(path, {recording_layout::kImuHeader}, &make_imu);
 }
 
 std::vector<VioRecord> read_vio_csv(const std::string& path) {
-    return read_csv<VioRecord>(path, recording_layout::kVioHeader, 18, &make_vio);
+    return read_csv<VioRecord>(
+        path, {recording_layout::kVioFeatureQualityHeader, recording_layout::kVioHeader},
+        &make_vio);
+}
+
+std::vector<std::vector<int>> read_visible_defects_csv(const std::string& path) {
+    const std::string text = detail::read_whole_file(path);
+    detail::LineReader reader(text);
+    match_header(path, reader, {recording_layout::kVisibleDefectsHeader});
+    std::vector<std::vector<int>> rows;
+    TextLine line;
+    while (reader.next(line)) {
+        if (detail::trim(line.text).empty()) continue;
+        const std::vector<std::string_view> fields = split_commas(line.text);
+        const LineContext where{path, line};
+        if (fields.size() != 3) {
+            throw ParseError(
+                path, at_line(line.number),
+                fmt::format("expected 3 comma-separated values, got {}", fields.size()));
+        }
+        if (detail::parse_int(fields[0], where) != static_cast<std::int64_t>(rows.size())) {
+            throw ParseError(path, at_line(line.number),
+                             fmt::format("expected image index {}", rows.size()));
+        }
+        detail::parse_double(fields[1], where);
+        rows.push_back(parse_ids(fields[2], where));
+    }
+    return rows;
 }
 
 std::vector<double> read_stamps(const std::string& path) {

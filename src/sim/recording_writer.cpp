@@ -2,6 +2,7 @@
 #include <scantling/sim/recording_writer.hpp>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -65,7 +66,8 @@ RecordingWriter::RecordingWriter(std::string directory, bool overwrite)
     : directory_(std::move(directory)) {
     prepare_directory(directory_, overwrite);
     imu_csv_ = std::string(layout::kImuHeader) + "\n";
-    vio_csv_ = std::string(layout::kVioHeader) + "\n";
+    vio_csv_ = std::string(layout::kVioFeatureQualityHeader) + "\n";
+    visible_defects_csv_ = std::string(layout::kVisibleDefectsHeader) + "\n";
 }
 
 std::string RecordingWriter::path(const std::string& relative) const {
@@ -112,8 +114,11 @@ void RecordingWriter::add_depth_frame(const PointCloud& frame,
 }
 
 void RecordingWriter::add_image(const RgbImage& image, double stamp_s,
-                                const Eigen::Isometry3d& T_world_sensor) {
+                                const Eigen::Isometry3d& T_world_sensor,
+                                std::span<const int> visible_defect_ids) {
     if (images_.stamps_s.empty()) create_folder(path(layout::kImagesDir));
+    visible_defects_csv_ += fmt::format("{},{},{}\n", images_.stamps_s.size(), stamp_s,
+                                        fmt::join(visible_defect_ids, ";"));
     write_png(path(std::string(layout::kImagesDir) + "/" +
                    layout::frame_stem(images_.stamps_s.size()) + ".png"),
               image.width, image.height, image.pixels);
@@ -137,6 +142,7 @@ void RecordingWriter::add_vio(const VioSample& sample) {
     line += fmt::format(",{},{},{},{}", q.x(), q.y(), q.z(), q.w());
     append_vector(line, sample.v_body_mps);
     for (int k = 0; k < 6; ++k) line += fmt::format(",{}", sample.covariance(k, k));
+    line += fmt::format(",{}", sample.feature_quality);
     vio_csv_ += line + "\n";
     ++counts_.vio;
 }
@@ -159,6 +165,10 @@ void RecordingWriter::finish(const RecordingSummary& summary) {
     }
     write_stream(layout::kDepthDir, depth_);
     write_stream(layout::kImagesDir, images_);
+    if (counts_.images > 0) {
+        write_text(path(std::string(layout::kImagesDir) + "/" + layout::kVisibleDefects),
+                   visible_defects_csv_);
+    }
     if (counts_.imu > 0) write_text(path(layout::kImu), imu_csv_);
     if (counts_.vio > 0) write_text(path(layout::kVio), vio_csv_);
     finish_extra();

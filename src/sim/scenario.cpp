@@ -128,6 +128,10 @@ void SensorSpec::validate(std::string_view prefix) const {
     if (type == SensorType::kUwb && anchors.empty()) {
         throw ConfigError(key(prefix, "anchors") + " is empty, expected at least one anchor");
     }
+    if (!(ambient_light >= 0.0 && ambient_light <= 1.0)) {
+        throw ConfigError(key(prefix, "ambient_light") + " = " + std::to_string(ambient_light) +
+                          ", expected in [0, 1]");
+    }
     if (motion_distortion && type != SensorType::kSpinningLidar) {
         throw ConfigError(key(prefix, "motion_distortion") + " applies to spinning_lidar only");
     }

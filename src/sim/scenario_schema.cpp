@@ -66,7 +66,8 @@ const std::map<std::string, SensorKeys>& sensor_keys() {
         {"imu",
          {{"type", "preset", "rate_hz", "noise", "T_body_sensor"},
           {"consumer_mems", "industrial_mems"}}},
-        {"vio", {{"type", "preset", "rate_hz", "noise"}, {"t265"}}},
+        {"vio",
+         {{"type", "preset", "rate_hz", "noise", "ambient_light", "T_body_sensor"}, {"t265"}}},
         {"depth_camera",
          {{"type", "preset", "rate_hz", "width", "noise", "T_body_sensor"},
           {"l515", "azure_nfov", "azure_nfov_binned"}}},
@@ -173,6 +174,8 @@ const ConfigSchema<SensorSpec>& sensor_spec_schema() {
             .field("max_range_m", &S::max_range_m, "sonar, range_finder: 0 = the model's",
                    kNonNegative)
             .field("surface_z_m", &S::surface_z_m, "pressure: world z of the water surface")
+            .field("ambient_light", &S::ambient_light, "vio: lighting factor, 0 = dark",
+                   Range{.min = 0.0, .max = 1.0})
             .list("anchors", &S::anchors, anchor_schema(), "uwb: anchors, world frame")
             .section("T_body_sensor", &S::T_body_sensor, pose_spec_schema(), "mount");
         return s;

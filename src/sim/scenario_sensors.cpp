@@ -8,6 +8,7 @@
 #include <scantling/sim/pinhole_camera.hpp>
 #include <scantling/sim/spinning_lidar.hpp>
 #include <scantling/sim/vio.hpp>
+#include <scantling/sim/vio_features.hpp>
 
 #include "detail/scenario_parts.hpp"
 
@@ -107,18 +108,36 @@ VioConfig vio_config(const SensorSpec& spec, const std::string& prefix) {
     return config;
 }
 
+VioFeatureConfig vio_features(const SensorSpec& spec, const std::string& prefix) {
+    VioFeatureConfig config;
+    config.ambient_light = spec.ambient_light;
+    // An unset mount looks forward (identity would put the optical axis along body z).
+    const PoseSpec& mount = spec.T_body_sensor;
+    const bool unset = mount.xyz.isZero() && mount.rpy_deg.isZero();
+    config.T_body_sensor = unset ? PoseSpec{.xyz = Eigen::Vector3d::Zero(),
+                                            .rpy_deg = Eigen::Vector3d(-90.0, 0.0, -90.0)}
+                                       .to_isometry()
+                                 : mount.to_isometry();
+    config.validate(prefix);
+    return config;
+}
+
 class VioSensor : public ScenarioSensor {
   public:
     VioSensor(const SensorSpec& spec, Rng rng, const std::string& prefix)
-        : vio_(vio_config(spec, prefix)), rng_(std::move(rng)) {}
+        : vio_(vio_config(spec, prefix)),
+          features_(vio_features(spec, prefix)),
+          rng_(std::move(rng)) {}
     double rate_hz() const override { return vio_.config().rate_hz; }
     void fire(const FireContext& c) override {
-        // Full feature quality: the scenario does not model lighting yet.
-        c.writer.add_vio(vio_.step(c.vehicle.at_tick(c.tick), 1.0, rng_));
+        const MotionState& state = c.vehicle.at_tick(c.tick);
+        const double quality = vio_feature_quality(c.scene, state.T_world_body, features_);
+        c.writer.add_vio(vio_.step(state, quality, rng_));
     }
 
   private:
     VioSimulator vio_;
+    VioFeatureConfig features_;
     Rng rng_;
 };
 
@@ -187,7 +206,8 @@ class CameraSensor : public ScenarioSensor {
     void fire(const FireContext& c) override {
         const Eigen::Isometry3d T_world_body = c.vehicle.pose_at(c.stamp_s);
         const RgbImage image = camera_.render(c.scene, T_world_body, rng_, c.parallel);
-        c.writer.add_image(image, c.stamp_s, T_world_body * camera_.config().T_body_sensor);
+        c.writer.add_image(image, c.stamp_s, T_world_body * camera_.config().T_body_sensor,
+                           camera_.visible_defects(c.scene, T_world_body));
     }
 
   private:

@@ -108,7 +108,9 @@ VioSample VioSimulator::step(const MotionState& truth, double feature_quality, R
     propagate_drift(truth.T_world_body.translation(),
                     1.0 + config_.poor_features_drift_gain * (1.0 - feature_quality), rng);
     previous_stamp_s_ = truth.stamp_s;
-    return output(truth, rng);
+    VioSample sample = output(truth, rng);
+    sample.feature_quality = feature_quality;
+    return sample;
 }
 
 VioSample VioSimulator::output(const MotionState& truth, Rng& rng) const {

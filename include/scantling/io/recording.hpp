@@ -11,6 +11,7 @@
 ///   DIR/lidar/T_body_sensor.txt  mounting extrinsic, one KITTI 3×4 line
 ///   DIR/depth/NNNNNN.ply, times.txt, poses_gt.txt      organised ToF frames (NaN = no return)
 ///   DIR/images/NNNNNN.png, times.txt, poses_gt.txt     RGB images
+///   DIR/images/visible_defects.csv  index,stamp_s,defect_ids (ids in view, ';'-separated)
 ///   DIR/rosette/NNNNNN.bin, times.txt, poses_gt.txt    rosette LiDAR frames, as lidar/
 ///   DIR/stereo/NNNNNN.ply, times.txt, poses_gt.txt     sparse stereo points, optical frame
 ///   DIR/sonar/NNNNNN.bin         multibeam ping, float32 intensity, beam-major (beam·bins+bin)
@@ -22,7 +23,8 @@
 ///   DIR/dvl.csv                  stamp_s,valid,vx,vy,vz,altitude_m (body frame)
 ///   DIR/wheel_odometry.csv       stamp_s,forward_speed_mps,yaw_rate_radps,slipping
 ///   DIR/imu.csv                  stamp_s,ax,ay,az,wx,wy,wz (sensor frame)
-///   DIR/vio.csv                  stamp_s,valid,x,y,z,qx,qy,qz,qw,vx,vy,vz,var_x,...,var_rz
+///   DIR/vio.csv                  stamp_s,valid,x,y,z,qx,qy,qz,qw,vx,vy,vz,var_x,...,var_rz,
+///                                feature_quality (the last column is absent in old recordings)
 ///   DIR/world/{map.ply, mesh.ply, metadata.json}
 ///   DIR/summary.json             what was simulated (deterministic)
 ///   DIR/timing.json              wall time of the run (the only non-deterministic file)
@@ -32,6 +34,7 @@
 
 #include <Eigen/Geometry>
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -70,8 +73,17 @@ inline constexpr const char* kWorldDir = "world";
 inline constexpr const char* kSummary = "summary.json";
 inline constexpr const char* kTiming = "timing.json";
 inline constexpr const char* kImuHeader = "stamp_s,ax,ay,az,wx,wy,wz";
+/// The columns every vio.csv has (recordings written before feature_quality have only these).
 inline constexpr const char* kVioHeader =
     "stamp_s,valid,x,y,z,qx,qy,qz,qw,vx,vy,vz,var_x,var_y,var_z,var_rx,var_ry,var_rz";
+/// The header the simulator writes: kVioHeader plus the feature quality in [0, 1].
+inline constexpr const char* kVioFeatureQualityHeader =
+    "stamp_s,valid,x,y,z,qx,qy,qz,qw,vx,vy,vz,var_x,var_y,var_z,var_rx,var_ry,var_rz,"
+    "feature_quality";
+/// In DIR/images/: one row per image, `index,stamp_s,defect_ids` with the ids of the defects
+/// in view (world/metadata.json) ascending and separated by ';' (empty field: none).
+inline constexpr const char* kVisibleDefects = "visible_defects.csv";
+inline constexpr const char* kVisibleDefectsHeader = "index,stamp_s,defect_ids";
 /// "000042": the zero-padded 6-digit stem of frame `index`.
 std::string frame_stem(std::size_t index);
 }  // namespace recording_layout
@@ -91,6 +103,9 @@ struct VioRecord {
     Eigen::Isometry3d T_odom_body = Eigen::Isometry3d::Identity();
     Eigen::Vector3d v_body_mps = Eigen::Vector3d::Zero();
     Eigen::Matrix<double, 6, 1> variances = Eigen::Matrix<double, 6, 1>::Zero();
+    /// Share of textured, lit surface in the VIO camera's view the sample was simulated with,
+    /// in [0, 1] (1 = good); empty for recordings without the column.
+    std::optional<double> feature_quality;
 };
 
 /// One single-beam range (NaN when invalid).
@@ -163,6 +178,11 @@ class Recording {
     /// Path of image i (PNG).
     std::string image_path(std::size_t i) const;
     const FrameIndex& images() const { return images_; }
+    /// Ids of the defects in view in each image (images/visible_defects.csv): one entry per
+    /// image, or empty when the recording has no such file (older recordings).
+    const std::vector<std::vector<int>>& image_visible_defects() const {
+        return image_visible_defects_;
+    }
 
     const FrameIndex& lidar_sweeps() const { return lidar_; }
     /// Rosette LiDAR frame i in the sensor frame (KITTI .bin, or the .ply of an empty frame).
@@ -192,10 +212,13 @@ class Recording {
     friend Recording open_recording(const std::string& directory);
     /// rosette/, stereo/, sonar/ and the CSVs of the ranging and odometry sensors.
     void read_extra_streams(const std::string& directory);
+    /// images/visible_defects.csv when present (its rows must match the images).
+    void read_visible_defects();
     std::string directory_;
     FrameIndex lidar_;
     FrameIndex depth_;
     FrameIndex images_;
+    std::vector<std::vector<int>> image_visible_defects_;
     FrameIndex rosette_;
     FrameIndex stereo_;
     FrameIndex sonar_;
@@ -220,7 +243,10 @@ Recording open_recording(const std::string& directory);
 /// Readers of the CSV files (exposed for tests and tools). Throw FileError / ParseError
 /// naming the line (wrong header, wrong column count, non-number).
 std::vector<ImuRecord> read_imu_csv(const std::string& path);
+/// Accepts kVioFeatureQualityHeader and the older kVioHeader (feature_quality left empty).
 std::vector<VioRecord> read_vio_csv(const std::string& path);
+/// images/visible_defects.csv: the ids per row; ParseError unless rows are numbered 0, 1, ...
+std::vector<std::vector<int>> read_visible_defects_csv(const std::string& path);
 std::vector<RangeRecord> read_range_csv(const std::string& path);
 std::vector<UwbRecord> read_uwb_csv(const std::string& path);
 std::vector<PressureRecord> read_pressure_csv(const std::string& path);

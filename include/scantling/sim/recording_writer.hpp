@@ -9,6 +9,7 @@
 
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -79,8 +80,10 @@ class RecordingWriter {
     void set_lidar_extrinsic(const Eigen::Isometry3d& T_body_sensor);
     /// Writes depth/NNNNNN.ply (organised, NaN where no return).
     void add_depth_frame(const PointCloud& frame, const Eigen::Isometry3d& T_world_sensor);
-    /// Writes images/NNNNNN.png.
-    void add_image(const RgbImage& image, double stamp_s, const Eigen::Isometry3d& T_world_sensor);
+    /// Writes images/NNNNNN.png; `visible_defect_ids` (PinholeCamera::visible_defects) go to
+    /// images/visible_defects.csv.
+    void add_image(const RgbImage& image, double stamp_s, const Eigen::Isometry3d& T_world_sensor,
+                   std::span<const int> visible_defect_ids);
     void add_imu(const ImuSample& sample);
     void add_vio(const VioSample& sample);
     /// Writes sonar/NNNNNN.bin (float32, beam-major), sonar/NNNNNN.png (grey, columns = beams,
@@ -127,6 +130,7 @@ class RecordingWriter {
     Eigen::Isometry3d lidar_T_body_sensor_ = Eigen::Isometry3d::Identity();
     std::string imu_csv_;
     std::string vio_csv_;
+    std::string visible_defects_csv_;
     Stream sonar_;
     Stream rosette_;
     Stream stereo_;

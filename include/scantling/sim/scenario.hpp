@@ -174,7 +174,11 @@ struct SensorSpec {
     int num_bins = 0;                ///< multibeam_sonar: 0 = the model's default
     double max_range_m = 0.0;        ///< multibeam_sonar, range_finder: 0 = the model's default
     double surface_z_m = 0.0;        ///< pressure: world z of the water surface
+    /// vio: lighting factor in [0, 1] scaling the feature quality (vio_features.hpp); 0 = dark.
+    double ambient_light = 1.0;
     std::vector<UwbAnchor> anchors;  ///< uwb: at least one, world frame
+    /// Mount (body ← sensor). Cameras: optical frame. dvl and vio: unset (zero) keeps the
+    /// model's default (dvl down-looking, vio camera looking along body x).
     PoseSpec T_body_sensor{};
     void validate(std::string_view prefix = "sensor") const;
 };

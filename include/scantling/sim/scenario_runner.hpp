@@ -10,7 +10,8 @@
 /// Ground truth is logged at every tick. Each sensor fires at its own rate on the integer
 /// schedule of SimClock and is stamped with its nominal firing time; the pose at a firing
 /// time between two ticks is interpolated (slerp, linear translation) from the ticks, and the
-/// motion state for IMU/VIO is the one of the tick (dt ≤ 1 / rate keeps them exact). A
+/// motion state for IMU/VIO is the one of the tick (dt ≤ 1 / rate keeps them exact); the VIO's
+/// feature quality is cast from the tick pose (vio_features.hpp, no random draws). A
 /// spinning-LiDAR sweep started at t covers [t, t + 1/rate); without motion distortion it is cast
 /// from the pose at t; with it each column is cast from its own pose (scan_moving).
 ///

@@ -61,7 +61,8 @@ struct VioSample {
     Eigen::Vector3d v_body_mps = Eigen::Vector3d::Zero();           ///< body velocity, body frame
     Matrix6d covariance = Matrix6d::Zero();                         ///< of (δp, δθ), odom frame
     Eigen::Matrix3d velocity_covariance = Eigen::Matrix3d::Zero();  ///< of v_body_mps
-    bool valid = false;  ///< false during a dropout or lost tracking
+    bool valid = false;            ///< false during a dropout or lost tracking
+    double feature_quality = 1.0;  ///< the feature quality this sample was simulated with
 };
 
 /// VIO with its drift state. Not thread-safe; one simulator per VIO.
