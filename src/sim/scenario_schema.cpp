@@ -12,13 +12,12 @@ namespace {
 
 using io::ConfigNode;
 using io::ConfigSchema;
+using io::kNonNegative;
+using io::kPositive;
 using io::Range;
 using io::detail::fail;
 using io::detail::join_key;
 using io::detail::join_names;
-
-const Range kPositive{.min = 0.0, .min_exclusive = true};
-const Range kNonNegative{.min = 0.0};
 
 const std::vector<std::pair<std::string, SensorType>> kSensorTypes{
     {"spinning_lidar", SensorType::kSpinningLidar},

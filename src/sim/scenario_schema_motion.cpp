@@ -5,10 +5,9 @@ namespace scantling::sim::detail {
 namespace {
 
 using io::ConfigSchema;
+using io::kNonNegative;
+using io::kPositive;
 using io::Range;
-
-const Range kPositive{.min = 0.0, .min_exclusive = true};
-const Range kNonNegative{.min = 0.0};
 
 /// A member of a base config seen as a member of the derived spec (schemas are keyed on it).
 template <class Derived, class M, class Base>

@@ -5,11 +5,9 @@ namespace scantling::sim::detail {
 namespace {
 
 using io::ConfigSchema;
+using io::kNonNegative;
+using io::kPositive;
 using io::Range;
-
-const Range kPositive{.min = 0.0, .min_exclusive = true};
-const Range kNonNegative{.min = 0.0};
-const Range kUnit{.min = 0.0, .max = 1.0};
 
 ConfigSchema<StiffenerConfig> stiffener_schema() {
     ConfigSchema<StiffenerConfig> s;
@@ -29,7 +27,8 @@ ConfigSchema<DefectPlacementConfig> defects_schema() {
         .field("min_radius_m", &DefectPlacementConfig::min_radius_m, "patch radius range",
                kPositive)
         .field("max_radius_m", &DefectPlacementConfig::max_radius_m, "", kPositive)
-        .field("crack_fraction", &DefectPlacementConfig::crack_fraction, "share of cracks", kUnit)
+        .field("crack_fraction", &DefectPlacementConfig::crack_fraction, "share of cracks",
+               io::kUnitInterval)
         .field("seed", &DefectPlacementConfig::seed, "placement seed");
     return s;
 }

@@ -40,6 +40,11 @@ struct Range {
     bool max_exclusive = false;
 };
 
+/// Ranges most schemas need: (0, ∞), [0, ∞) and [0, 1].
+inline const Range kPositive{.min = 0.0, .min_exclusive = true};
+inline const Range kNonNegative{.min = 0.0};
+inline const Range kUnitInterval{.min = 0.0, .max = 1.0};
+
 namespace detail {
 
 /// "a.b" + "c" → "a.b.c"; "" + "c" → "c".
