@@ -1,6 +1,7 @@
 // Columns added to recordings after their first version: the VIO's feature quality and the
 // defects in view per image; old files without them must still read.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -17,7 +18,11 @@ namespace fs = std::filesystem;
 class RecordingColumnsTest : public ::testing::Test {
   protected:
     void SetUp() override {
-        dir_ = fs::path(::testing::TempDir()) / "scantling_recording_columns_test";
+        // Per test and process: ctest runs every test as its own process, concurrently.
+        dir_ = fs::path(::testing::TempDir()) /
+               ("scantling_recording_columns_" +
+                std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
+                std::to_string(::getpid()));
         fs::remove_all(dir_);
         fs::create_directories(dir_);
     }

@@ -1,5 +1,6 @@
 // Recording reader: layout, round trip of hand-written files, errors naming file and line.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -21,7 +22,8 @@ class RecordingTest : public testing::Test {
     void SetUp() override {
         dir_ = fs::path(testing::TempDir()) /
                ("scantling_recording_test_" +
-                std::string(testing::UnitTest::GetInstance()->current_test_info()->name()));
+                std::string(testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
+                std::to_string(::getpid()));
         fs::remove_all(dir_);
         fs::create_directories(dir_ / "lidar");
         const std::vector<StampedPose> gt{{0.0, Eigen::Isometry3d::Identity()},

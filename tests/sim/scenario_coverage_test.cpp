@@ -1,6 +1,7 @@
 // Scenarios with the ROV, crawler and legged vehicles and the sonar, rosette, stereo, ranging
 // and odometry sensors: files, counts, read-back, surface contact, determinism.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -52,7 +53,8 @@ export: {world: false}
 constexpr double kSurfaceContact_m = 0.01;
 
 fs::path temp_dir(const std::string& name) {
-    const fs::path dir = fs::path(testing::TempDir()) / ("scantling_coverage_test_" + name);
+    const fs::path dir = fs::path(testing::TempDir()) /
+                         ("scantling_coverage_test_" + name + "_" + std::to_string(::getpid()));
     fs::remove_all(dir);
     return dir;
 }

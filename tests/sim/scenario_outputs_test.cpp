@@ -1,6 +1,7 @@
 // What the scenario runner records besides the raw sensor data: the VIO's feature quality
 // (from the scene and the lighting) and the defects in view in each camera image.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -56,7 +57,8 @@ Scenario plate_scenario(const std::string& height_m, const std::string& light) {
 }
 
 io::Recording run(const Scenario& scenario, const std::string& name) {
-    const fs::path dir = fs::path(::testing::TempDir()) / ("scantling_scenario_outputs_" + name);
+    const fs::path dir = fs::path(::testing::TempDir()) /
+                         ("scantling_scenario_outputs_" + name + "_" + std::to_string(::getpid()));
     fs::remove_all(dir);
     run_scenario(scenario, dir.string());
     return io::open_recording(dir.string());
@@ -124,7 +126,8 @@ TEST(ScenarioOutputs, ImagesListTheDefectsInViewAndNotThoseOnTheFarSide) {
 }
 
 TEST(ScenarioOutputs, RecordingsWithoutTheDefectFileStillOpen) {
-    const fs::path dir = fs::path(::testing::TempDir()) / "scantling_scenario_outputs_compat";
+    const fs::path dir = fs::path(::testing::TempDir()) /
+                         ("scantling_scenario_outputs_compat_" + std::to_string(::getpid()));
     fs::remove_all(dir);
     run_scenario(plate_scenario("0.5", "1.0"), dir.string());
     const fs::path csv = dir / "images" / "visible_defects.csv";

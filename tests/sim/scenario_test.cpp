@@ -1,5 +1,6 @@
 // Scenarios: parsing and validation, the runner's recording, determinism.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -54,7 +55,8 @@ export: {map_spacing_m: 0.2}
 constexpr double kFloatTolerance_m = 1e-5;
 
 fs::path temp_dir(const std::string& name) {
-    const fs::path dir = fs::path(testing::TempDir()) / ("scantling_scenario_test_" + name);
+    const fs::path dir = fs::path(testing::TempDir()) /
+                         ("scantling_scenario_test_" + name + "_" + std::to_string(::getpid()));
     fs::remove_all(dir);
     return dir;
 }
