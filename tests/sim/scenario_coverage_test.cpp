@@ -13,7 +13,9 @@
 #include <scantling/io/recording.hpp>
 #include <scantling/sim/scenario.hpp>
 #include <scantling/sim/scenario_runner.hpp>
+
 #include <scantling/sim/surface_projector.hpp>
+#include "scenario_test_support.hpp"
 
 namespace scantling::sim {
 namespace {
@@ -53,24 +55,10 @@ export: {world: false}
 constexpr double kSurfaceContact_m = 0.01;
 
 fs::path temp_dir(const std::string& name) {
-    const fs::path dir = fs::path(testing::TempDir()) /
-                         ("scantling_coverage_test_" + name + "_" + std::to_string(::getpid()));
-    fs::remove_all(dir);
-    return dir;
+    return test::scenario_temp_dir("coverage_test", name);
 }
 
-std::map<std::string, std::string> read_tree(const fs::path& dir) {
-    std::map<std::string, std::string> files;
-    for (const auto& entry : fs::recursive_directory_iterator(dir)) {
-        if (!entry.is_regular_file()) continue;
-        std::ifstream in(entry.path(), std::ios::binary);
-        std::ostringstream bytes;
-        bytes << in.rdbuf();
-        files[fs::relative(entry.path(), dir).string()] = bytes.str();
-    }
-    files.erase("timing.json");
-    return files;
-}
+using test::read_tree;
 
 ScenarioRunResult run_coverage(const fs::path& dir, std::uint64_t seed, int num_threads = 0) {
     Scenario scenario = parse_scenario(kCoverageScenario, "coverage.yaml");

@@ -14,6 +14,8 @@
 #include <scantling/sim/scenario.hpp>
 #include <scantling/sim/scenario_runner.hpp>
 
+#include "scenario_test_support.hpp"
+
 namespace scantling::sim {
 namespace {
 
@@ -55,24 +57,10 @@ export: {map_spacing_m: 0.2}
 constexpr double kFloatTolerance_m = 1e-5;
 
 fs::path temp_dir(const std::string& name) {
-    const fs::path dir = fs::path(testing::TempDir()) /
-                         ("scantling_scenario_test_" + name + "_" + std::to_string(::getpid()));
-    fs::remove_all(dir);
-    return dir;
+    return test::scenario_temp_dir("scenario_test", name);
 }
 
-std::map<std::string, std::string> read_tree(const fs::path& dir) {
-    std::map<std::string, std::string> files;
-    for (const auto& entry : fs::recursive_directory_iterator(dir)) {
-        if (!entry.is_regular_file()) continue;
-        std::ifstream in(entry.path(), std::ios::binary);
-        std::ostringstream bytes;
-        bytes << in.rdbuf();
-        files[fs::relative(entry.path(), dir).string()] = bytes.str();
-    }
-    files.erase("timing.json");  // wall time: the one file that may differ
-    return files;
-}
+using test::read_tree;
 
 ScenarioRunResult run_small(const fs::path& dir, std::uint64_t seed, int num_threads = 0) {
     Scenario scenario = parse_scenario(kSmallScenario, "small.yaml");
