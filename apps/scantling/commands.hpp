@@ -9,6 +9,7 @@
 #include <optional>
 #include <ostream>
 #include <string>
+#include <vector>
 
 namespace scantling::app {
 
@@ -75,5 +76,49 @@ Eigen::Isometry3d read_transform_file(const std::string& path);
 /// the 6×6 covariance where the method gives one. Options, --init and the output directory are
 /// checked before the clouds are read; nothing is written on failure.
 void run_register(const RegisterOptions& options, std::ostream& out);
+
+struct OdometryOptions {
+    std::string input;  ///< simulator recording, KITTI sequence folder or folder of clouds
+    std::string out;    ///< trajectory file (kitti or tum)
+    std::optional<std::string> format;  ///< kitti or tum (unset: from --out's extension)
+    std::string method = "liodom";      ///< liodom, or icp (the scan-to-scan baseline)
+    std::string preset = "kitti";       ///< liodom_preset() name
+    bool preset_given = false;          ///< --preset was on the command line
+    /// Motion prior of the predictions: "none" (constant velocity) or "vio" (the recording's
+    /// vio.csv; recordings only).
+    std::string prior = "none";
+    std::optional<std::string> config_path;  ///< YAML config (preset + overrides)
+    std::optional<double> period_s;          ///< sweep period when the input has no stamps
+    std::optional<std::size_t> max_frames;   ///< only the first N sweeps
+    bool print_config = false;               ///< print the resolved config as YAML and exit
+    bool progress = true;                    ///< progress bar on stderr
+    int num_threads = 0;                     ///< 0 = the config's setting
+};
+
+/// `scantling odometry INPUT --out TRAJ`: runs LiODOM, writes the trajectory (atomically), the
+/// per-frame report `<stem>_frames.csv` and, when the input has ground truth, `<stem>_gt.*` in
+/// the same format; prints a summary (and the drift against the ground truth when there is one).
+void run_odometry(const OdometryOptions& options, std::ostream& out);
+
+/// Prints the drift of `estimate` against `ground_truth` (same length, same frame): the KITTI
+/// metric when the path is long enough, ATE as a percentage of the path length.
+void print_drift(const std::vector<Eigen::Isometry3d>& ground_truth,
+                 const std::vector<Eigen::Isometry3d>& estimate, std::ostream& out);
+
+struct EvalOptions {
+    std::string ground_truth;             ///< --gt: KITTI pose file or TUM trajectory
+    std::string estimate;                 ///< --est: same format as the ground truth
+    std::optional<std::string> format;    ///< kitti or tum (unset: from the numbers on a line)
+    double max_time_difference_s = 0.02;  ///< TUM association: largest stamp difference, >= 0
+    bool json = false;                    ///< one JSON object instead of "key: value" lines
+    /// Folder for <est-stem>_top.svg and <est-stem>_errors.svg (created; unset: beside EST).
+    std::optional<std::string> plots_dir;
+    bool plots = true;  ///< false: write no plots (--no-plots)
+};
+
+/// `scantling eval --gt GT --est EST`: the KITTI metric (RTE, RRE), ATE after SE(3) alignment
+/// and RPE over 10 m, plus a top view and an error-along-path plot (SVG). Everything is
+/// computed and rendered before the first plot is written, so nothing is written on failure.
+void run_eval(const EvalOptions& options, std::ostream& out);
 
 }  // namespace scantling::app

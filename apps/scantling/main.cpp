@@ -41,6 +41,24 @@ struct CommandLine {
     CLI::Option* register_max_distance = nullptr;
     std::string init_path;
     double max_distance_m = 0.0;
+    scantling::app::EvalOptions eval;
+    CLI::App* eval_cmd = nullptr;
+    CLI::Option* eval_format = nullptr;
+    CLI::Option* eval_plots = nullptr;
+    std::string eval_format_name;
+    std::string eval_plots_dir;
+    bool eval_no_plots = false;
+    scantling::app::OdometryOptions odo;
+    CLI::App* odometry_cmd = nullptr;
+    CLI::Option* odometry_format = nullptr;
+    CLI::Option* odometry_preset = nullptr;
+    CLI::Option* odometry_config = nullptr;
+    CLI::Option* odometry_period = nullptr;
+    CLI::Option* odometry_max_frames = nullptr;
+    std::string odo_format;
+    std::string odo_config;
+    double odo_period_s = 0.1;
+    std::size_t odo_max_frames = 0;
 };
 
 int report_error(std::string message) {
@@ -112,6 +130,71 @@ void define_register(CLI::App& app, CommandLine& cl) {
     add_threads_option(*cmd, cl);
 }
 
+void define_eval(CLI::App& app, CommandLine& cl) {
+    auto* cmd = cl.eval_cmd = app.add_subcommand(
+        "eval", "Compare an estimated trajectory with ground truth (KITTI RTE/RRE, ATE, RPE)");
+    cmd->add_option("--gt", cl.eval.ground_truth, "Ground truth: KITTI poses or TUM trajectory")
+        ->required()
+        ->type_name("GT");
+    cmd->add_option("--est", cl.eval.estimate, "Estimated trajectory, same format as --gt")
+        ->required()
+        ->type_name("EST");
+    cl.eval_format = cmd->add_option("--format", cl.eval_format_name,
+                                     "kitti (matched by line) or tum (matched by time stamp); "
+                                     "default: from the count of numbers on a line")
+                         ->type_name("F");
+    cmd->add_option("--max-dt", cl.eval.max_time_difference_s,
+                    "TUM: largest time difference of a matched pose, seconds (default 0.02)")
+        ->type_name("S");
+    cmd->add_flag("--json", cl.eval.json, "Print one JSON object instead of key: value lines");
+    cl.eval_plots = cmd->add_option("--plots", cl.eval_plots_dir,
+                                    "Folder for <est-stem>_top.svg and <est-stem>_errors.svg "
+                                    "(created; default: beside EST)")
+                        ->type_name("DIR");
+    cmd->add_flag("--no-plots", cl.eval_no_plots, "Write no plots");
+}
+
+void define_odometry(CLI::App& app, CommandLine& cl) {
+    auto* cmd = cl.odometry_cmd = app.add_subcommand(
+        "odometry", "LiDAR odometry (LiODOM) over a recording, KITTI sequence or folder of scans");
+    cmd->add_option("INPUT", cl.odo.input,
+                    "Simulator recording, KITTI sequence folder (velodyne/*.bin) or folder of "
+                    ".pcd/.ply/.bin sweeps")
+        ->required()
+        ->type_name("");
+    cmd->add_option("--out", cl.odo.out, "Trajectory file (T_world_sensor per sweep)")
+        ->type_name("TRAJ");
+    cl.odometry_format = cmd->add_option("--format", cl.odo_format,
+                                         "kitti (3x4 per line) or tum (default: from --out's "
+                                         "extension, .tum = tum)")
+                             ->type_name("kitti|tum");
+    cl.odometry_preset =
+        cmd->add_option("--preset", cl.odo.preset, "kitti, os1_drone or confined (default kitti)")
+            ->type_name("NAME");
+    cl.odometry_config =
+        cmd->add_option("--config", cl.odo_config, "YAML config: preset + overrides")
+            ->type_name("FILE");
+    cl.odometry_period = cmd->add_option("--period", cl.odo_period_s,
+                                         "Seconds between sweeps for inputs without stamps "
+                                         "(default 0.1)")
+                             ->type_name("S");
+    cl.odometry_max_frames =
+        cmd->add_option("--max-frames", cl.odo_max_frames, "Only the first N sweeps")
+            ->type_name("N");
+    cmd->add_option("--method", cl.odo.method,
+                    "liodom, or icp: the scan-to-scan point-to-plane baseline (same range gate "
+                    "and voxel as the preset)")
+        ->type_name("liodom|icp");
+    cmd->add_option("--prior", cl.odo.prior,
+                    "Motion prior of each prediction: none (constant velocity) or vio (the "
+                    "recording's vio.csv); degenerate directions keep it")
+        ->type_name("none|vio");
+    cmd->add_flag("--print-config", cl.odo.print_config,
+                  "Print the resolved config as YAML and exit");
+    cmd->add_flag("--no-progress", cl.no_progress, "No progress bar on stderr");
+    add_threads_option(*cmd, cl);
+}
+
 void define_commands(CLI::App& app, CommandLine& cl) {
     app.set_version_flag("--version", std::string("scantling ") + SCANTLING_VERSION);
     app.add_flag("-v,--verbose", cl.verbose, "Debug logging on stderr");
@@ -145,6 +228,8 @@ void define_commands(CLI::App& app, CommandLine& cl) {
         ->type_name("SIZE_M");
     define_sim(app, cl);
     define_register(app, cl);
+    define_eval(app, cl);
+    define_odometry(app, cl);
     // Set last: subcommands created after it would inherit it.
     app.footer("Run 'scantling SUBCOMMAND --help' for the options of a subcommand.");
 }
@@ -165,12 +250,28 @@ void run(CommandLine& cl) {
         cl.sim.num_threads = cl.num_threads;
         return scantling::app::run_sim(cl.sim, std::cout);
     }
+    if (cl.eval_cmd->parsed()) {
+        if (cl.eval_format->count() > 0) cl.eval.format = cl.eval_format_name;
+        if (cl.eval_plots->count() > 0) cl.eval.plots_dir = cl.eval_plots_dir;
+        cl.eval.plots = !cl.eval_no_plots;
+        return scantling::app::run_eval(cl.eval, std::cout);
+    }
     if (cl.register_cmd->parsed()) {
         if (cl.register_init->count() > 0) cl.reg.init_path = cl.init_path;
         if (cl.register_voxel->count() > 0) cl.reg.voxel_size_m = cl.voxel_size_m;
         if (cl.register_max_distance->count() > 0) cl.reg.max_distance_m = cl.max_distance_m;
         cl.reg.num_threads = cl.num_threads;
         return scantling::app::run_register(cl.reg, std::cout);
+    }
+    if (cl.odometry_cmd->parsed()) {
+        if (cl.odometry_format->count() > 0) cl.odo.format = cl.odo_format;
+        cl.odo.preset_given = cl.odometry_preset->count() > 0;
+        if (cl.odometry_config->count() > 0) cl.odo.config_path = cl.odo_config;
+        if (cl.odometry_period->count() > 0) cl.odo.period_s = cl.odo_period_s;
+        if (cl.odometry_max_frames->count() > 0) cl.odo.max_frames = cl.odo_max_frames;
+        cl.odo.progress = !cl.no_progress;
+        cl.odo.num_threads = cl.num_threads;
+        return scantling::app::run_odometry(cl.odo, std::cout);
     }
     if (cl.downsample_cmd->parsed() || cl.convert_voxel->count() > 0) {
         cl.convert.voxel_size_m = cl.voxel_size_m;
@@ -187,7 +288,9 @@ int run_main(int argc, char** argv) {
         app.parse(argc, argv);
         if (app.get_subcommands().empty()) {
             return report_error(
-                "a subcommand is required: info, convert, downsample, sim or register" + kSeeHelp);
+                "a subcommand is required: info, convert, downsample, sim, register, odometry or "
+                "eval" +
+                kSeeHelp);
         }
     } catch (const CLI::Success& e) {
         return app.exit(e);  // --help, --version: printed on stdout, exit 0

@@ -66,6 +66,8 @@ void WorldSpec::validate(std::string_view prefix) const {
             return moebius.validate(p);
         case WorldType::kShipHullMesh:
             return ship_hull_mesh.validate(p);
+        case WorldType::kUrban:
+            return urban.validate(p);
     }
 }
 
@@ -200,6 +202,8 @@ World build_world(const WorldSpec& spec, const std::string& base_directory) {
             return build_ship_hull(spec.ship_hull);
         case WorldType::kMoebius:
             return build_moebius(spec.moebius);
+        case WorldType::kUrban:
+            return build_urban(spec.urban);
         case WorldType::kShipHullMesh: {
             HullMeshDockConfig config = spec.ship_hull_mesh;
             config.path = resolve_path(config.path, base_directory);

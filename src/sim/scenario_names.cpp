@@ -57,6 +57,8 @@ std::string_view to_string(WorldType type) {
             return "moebius";
         case WorldType::kShipHullMesh:
             return "ship_hull_mesh";
+        case WorldType::kUrban:
+            return "urban";
     }
     return "?";
 }

@@ -48,7 +48,8 @@ const std::vector<std::pair<std::string, SensorPreset>> kPresets{
     {"lidar_lite_v3", SensorPreset::kLidarLiteV3},
     {"teraranger_evo_60m", SensorPreset::kTerarangerEvo60m},
     {"hc_sr04", SensorPreset::kHcSr04},
-    {"livox_mid70", SensorPreset::kLivoxMid70}};
+    {"livox_mid70", SensorPreset::kLivoxMid70},
+    {"os0_64", SensorPreset::kOs0_64}};
 
 /// Keys and presets that apply to each sensor type.
 struct SensorKeys {
@@ -61,7 +62,7 @@ const std::map<std::string, SensorKeys>& sensor_keys() {
         {"spinning_lidar",
          {{"type", "preset", "rate_hz", "columns", "noise", "motion_distortion", "write_ply",
            "T_body_sensor"},
-          {"os1_64", "hdl64e"}}},
+          {"os1_64", "hdl64e", "os0_64"}}},
         {"imu",
          {{"type", "preset", "rate_hz", "noise", "T_body_sensor"},
           {"consumer_mems", "industrial_mems"}}},
@@ -209,7 +210,7 @@ void check_scenario_document(const io::ConfigNode& root) {
         detail::check_sections(
             *world, "world", "cylinder",
             {"ballast_tank_mockup", "ballast_tank_large", "storage_tank", "distillation_column",
-             "cylinder", "plate", "mesh", "ship_hull", "moebius", "ship_hull_mesh"});
+             "cylinder", "plate", "mesh", "ship_hull", "moebius", "ship_hull_mesh", "urban"});
     }
     const io::ConfigNode* vehicle = root.find("vehicle");
     if (vehicle != nullptr && vehicle->is_map()) {

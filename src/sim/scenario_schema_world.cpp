@@ -210,6 +210,48 @@ ConfigSchema<MoebiusConfig> moebius_schema() {
     return s;
 }
 
+ConfigSchema<UrbanRouteNode> route_node_schema() {
+    ConfigSchema<UrbanRouteNode> s;
+    s.field("i", &UrbanRouteNode::i, "street along y, x = i pitch_x", kNonNegative)
+        .field("j", &UrbanRouteNode::j, "street along x, y = j pitch_y", kNonNegative);
+    return s;
+}
+
+ConfigSchema<UrbanConfig> urban_schema() {
+    using C = UrbanConfig;
+    ConfigSchema<C> s;
+    s.field("blocks_x", &C::blocks_x, "blocks between streets 0 and blocks_x", Range{.min = 1})
+        .field("blocks_y", &C::blocks_y, "blocks between streets 0 and blocks_y", Range{.min = 1})
+        .field("block_length_m", &C::block_length_m, "along x, kerb to kerb", kPositive)
+        .field("block_width_m", &C::block_width_m, "along y, kerb to kerb", kPositive)
+        .field("street_width_m", &C::street_width_m, "kerb to kerb", kPositive)
+        .field("sidewalk_width_m", &C::sidewalk_width_m, "kerb to building line", kPositive)
+        .field("kerb_height_m", &C::kerb_height_m, "", kNonNegative)
+        .field("ground_margin_m", &C::ground_margin_m, "road around the city", kPositive)
+        .field("min_height_m", &C::min_height_m, "building height range", kPositive)
+        .field("max_height_m", &C::max_height_m, "", kPositive)
+        .field("min_frontage_m", &C::min_frontage_m, "building length range", kPositive)
+        .field("max_frontage_m", &C::max_frontage_m, "", kPositive)
+        .field("min_depth_m", &C::min_depth_m, "building depth range", kPositive)
+        .field("max_depth_m", &C::max_depth_m, "", kPositive)
+        .field("gap_probability", &C::gap_probability, "gap after a building", io::kUnitInterval)
+        .field("min_gap_m", &C::min_gap_m, "gap width range", kPositive)
+        .field("max_gap_m", &C::max_gap_m, "", kPositive)
+        .field("storey_height_m", &C::storey_height_m, "", kPositive)
+        .field("bay_width_m", &C::bay_width_m, "window spacing", kPositive)
+        .field("facade_recess_m", &C::facade_recess_m, "glazing behind the piers", kPositive)
+        .field("balcony_probability", &C::balcony_probability, "per building", io::kUnitInterval)
+        .field("pole_spacing_m", &C::pole_spacing_m, "lamp posts along the kerbs", kPositive)
+        .field("tree_probability", &C::tree_probability, "between two posts", io::kUnitInterval)
+        .field("parked_car_probability", &C::parked_car_probability, "per 6 m kerb slot",
+               io::kUnitInterval)
+        .list("route", &C::route, route_node_schema(), "closed loop of crossings {i, j}")
+        .field("lane_offset_m", &C::lane_offset_m, "route: right of the centre line", kNonNegative)
+        .field("seed", &C::seed, "buildings, gaps, trees, cars")
+        .section("defects", &C::defects, defects_schema());
+    return s;
+}
+
 }  // namespace
 
 const ConfigSchema<WorldSpec>& world_spec_schema() {
@@ -225,7 +267,8 @@ const ConfigSchema<WorldSpec>& world_spec_schema() {
                       {"mesh", WorldType::kMesh},
                       {"ship_hull", WorldType::kShipHull},
                       {"moebius", WorldType::kMoebius},
-                      {"ship_hull_mesh", WorldType::kShipHullMesh}},
+                      {"ship_hull_mesh", WorldType::kShipHullMesh},
+                      {"urban", WorldType::kUrban}},
                      "world builder; its parameters go in the section of the same name")
             .section("ballast_tank_mockup", &WorldSpec::ballast_tank_mockup, mockup_schema())
             .section("ballast_tank_large", &WorldSpec::ballast_tank_large, large_schema())
@@ -236,7 +279,8 @@ const ConfigSchema<WorldSpec>& world_spec_schema() {
             .section("mesh", &WorldSpec::mesh, mesh_schema())
             .section("ship_hull", &WorldSpec::ship_hull, ship_hull_schema())
             .section("moebius", &WorldSpec::moebius, moebius_schema())
-            .section("ship_hull_mesh", &WorldSpec::ship_hull_mesh, hull_mesh_schema());
+            .section("ship_hull_mesh", &WorldSpec::ship_hull_mesh, hull_mesh_schema())
+            .section("urban", &WorldSpec::urban, urban_schema());
         return s;
     }();
     return schema;

@@ -24,6 +24,9 @@ SpinningLidarConfig lidar_config(const SensorSpec& spec, const std::string& pref
     if (spec.preset == SensorPreset::kDefault || spec.preset == SensorPreset::kOs1_64) {
         config = ouster_os1_64(spec.columns > 0 ? spec.columns : 1024,
                                spec.rate_hz > 0.0 ? spec.rate_hz : 10.0);
+    } else if (spec.preset == SensorPreset::kOs0_64) {
+        config = ouster_os0_64(spec.columns > 0 ? spec.columns : 1024,
+                               spec.rate_hz > 0.0 ? spec.rate_hz : 10.0);
     } else if (spec.preset == SensorPreset::kHdl64e) {
         config = velodyne_hdl64e();
         if (spec.columns > 0) config.columns = spec.columns;

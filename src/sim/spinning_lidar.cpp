@@ -81,6 +81,22 @@ SpinningLidarConfig ouster_os1_64(int columns, double rate_hz) {
     return config;
 }
 
+SpinningLidarConfig ouster_os0_64(int columns, double rate_hz) {
+    if (!is_ouster_mode(columns, rate_hz)) {
+        throw ConfigError(fmt::format(
+            "ouster_os0_64.columns = {} at rate_hz = {}, expected an Ouster lidar mode (512x10, "
+            "512x20, 1024x10, 1024x20, 2048x10)",
+            columns, rate_hz));
+    }
+    SpinningLidarConfig config;
+    config.ring_elevations_rad = uniform_ring_elevations(64, -45.0 * kDeg, 45.0 * kDeg);
+    config.columns = columns;
+    config.rate_hz = rate_hz;
+    config.min_range_m = 0.3;
+    config.max_range_m = 50.0;
+    return config;
+}
+
 SpinningLidarConfig velodyne_hdl64e() {
     SpinningLidarConfig config;
     std::vector<double> lower = uniform_ring_elevations(32, -24.8 * kDeg, -8.83 * kDeg);

@@ -47,6 +47,51 @@ TEST(SpinningLidar, PresetsHaveSixtyFourRingsAscendingOverTheDatasheetFov) {
     EXPECT_NO_THROW(hdl.validate());
 }
 
+TEST(SpinningLidar, Os0PresetSpansNinetyDegreesVerticallyWithAShortRangeWindow) {
+    const SpinningLidarConfig os0 = ouster_os0_64(2048, 10.0);
+    ASSERT_EQ(os0.rings(), 64);
+    EXPECT_NEAR(os0.ring_elevations_rad.front(), -kPi / 4.0, 1e-12);
+    EXPECT_NEAR(os0.ring_elevations_rad.back(), kPi / 4.0, 1e-12);
+    for (int r = 1; r < 64; ++r) {
+        EXPECT_NEAR(os0.ring_elevations_rad[r] - os0.ring_elevations_rad[r - 1], kPi / 2.0 / 63.0,
+                    1e-12);
+    }
+    EXPECT_EQ(os0.columns, 2048);
+    EXPECT_EQ(os0.rate_hz, 10.0);
+    EXPECT_EQ(os0.min_range_m, 0.3);
+    EXPECT_EQ(os0.max_range_m, 50.0);
+    EXPECT_EQ(os0.returns.sigma_m, ouster_os1_returns().sigma_m);
+    EXPECT_NO_THROW(os0.validate());
+    EXPECT_EQ(ouster_os0_64().columns, 1024);
+    EXPECT_THROW(ouster_os0_64(2048, 20.0), ConfigError);
+    EXPECT_THROW(ouster_os0_64(1000, 10.0), ConfigError);
+}
+
+TEST(SpinningLidar, Os0SeesFloorAndCeilingOfANarrowShaftAndNothingWithinItsMinimumRange) {
+    // A 2 m wide, 10 m tall shaft: every beam returns; the top ring climbs at 45°.
+    const Eigen::Vector3d lo(-1.0, -1.0, -5.0), hi(1.0, 1.0, 5.0);
+    SpinningLidarConfig config = ouster_os0_64();
+    config.returns = noiseless(config.returns);
+    const SpinningLidar lidar(config);
+    Rng rng(11);
+    const TestScene shaft(box_room(lo, hi));
+    const PointCloud cloud = lidar.scan(shaft.view(), Eigen::Isometry3d::Identity(), rng);
+    ASSERT_EQ(cloud.size(), 64u * 1024u);
+    double highest_rad = -kPi;
+    for (std::size_t i = 0; i < cloud.size(); ++i) {
+        const Eigen::Vector3d& p = cloud.points[i];
+        ASSERT_NEAR(p.norm(), box_exit_range(Eigen::Vector3d::Zero(), p.normalized(), lo, hi),
+                    kExact_m);
+        highest_rad = std::max(highest_rad, std::asin(p.z() / p.norm()));
+    }
+    EXPECT_NEAR(highest_rad, kPi / 4.0, 1e-12);
+    // Every wall of a 0.3 m cube is nearer than 0.3 m (corners at 0.26 m): no returns.
+    const Eigen::Vector3d small(0.15, 0.15, 0.15);
+    const TestScene cube(box_room(-small, small));
+    const PointCloud none = lidar.scan(cube.view(), Eigen::Isometry3d::Identity(), rng);
+    EXPECT_EQ(none.size(), 0u);
+}
+
 TEST(SpinningLidar, NoiselessSweepInBoxRoomMeasuresExactWallDistances) {
     const TestScene scene(box_room(kLo, kHi));
     const SpinningLidar lidar(noiseless_os1());

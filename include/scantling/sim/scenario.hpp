@@ -31,6 +31,7 @@
 #include <scantling/sim/world.hpp>
 #include <scantling/sim/world_builders.hpp>
 #include <scantling/sim/world_hull.hpp>
+#include <scantling/sim/world_urban.hpp>
 
 namespace scantling::sim {
 
@@ -53,6 +54,7 @@ enum class WorldType {
     kShipHull,
     kMoebius,
     kShipHullMesh,  ///< a hull mesh file in a dock or at a quay (build_hull_mesh_in_dock)
+    kUrban,         ///< a KITTI-like city of streets and buildings (world_urban.hpp)
 };
 
 /// The world and the parameters of its builder; only the section of `type` is used.
@@ -69,6 +71,7 @@ struct WorldSpec {
     MoebiusConfig moebius{};
     /// `path` relative to the scenario file's folder (or absolute).
     HullMeshDockConfig ship_hull_mesh{};
+    UrbanConfig urban{};
     /// Validates the section of `type` ("<prefix>.storage_tank.diameter_m = ...").
     void validate(std::string_view prefix = "world") const;
 };
@@ -138,9 +141,9 @@ enum class SensorType {
     kWheelOdometry,
 };
 
-/// Presets, by sensor type: spinning_lidar os1_64 | hdl64e; depth_camera l515 | azure_nfov |
-/// azure_nfov_binned; camera uav3d | rov; imu consumer_mems | industrial_mems; vio t265;
-/// range_finder lidar_lite_v3 | teraranger_evo_60m | hc_sr04; rosette_lidar livox_mid70.
+/// Presets, by sensor type: spinning_lidar os1_64 | hdl64e | os0_64; depth_camera l515 |
+/// azure_nfov | azure_nfov_binned; camera uav3d | rov; imu consumer_mems | industrial_mems; vio
+/// t265; range_finder lidar_lite_v3 | teraranger_evo_60m | hc_sr04; rosette_lidar livox_mid70.
 enum class SensorPreset {
     kDefault,  ///< the first preset of the type
     kOs1_64,
@@ -157,6 +160,7 @@ enum class SensorPreset {
     kTerarangerEvo60m,
     kHcSr04,
     kLivoxMid70,
+    kOs0_64,
 };
 
 /// One sensor. Keys that do not apply to `type` are rejected when parsing (with their line).

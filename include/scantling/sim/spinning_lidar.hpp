@@ -1,6 +1,7 @@
 #pragma once
 /// @file
-/// Spinning multi-beam LiDAR (Ouster OS1-64, Velodyne HDL-64E) by ray casting. SPEC §1, §10.
+/// Spinning multi-beam LiDAR (Ouster OS1-64, OS0-64, Velodyne HDL-64E) by ray casting. SPEC §1,
+/// §10.
 ///
 /// Sensor frame: x forward, y left, z up, origin on the rotation axis at the optical centre
 /// (Ouster's "sensor coordinate frame"). Beam (ring r, column c) has elevation
@@ -72,6 +73,14 @@ struct SpinningLidarConfig {
 /// Lidar modes: columns × rate_hz ∈ {512×10, 512×20, 1024×10, 1024×20, 2048×10}; anything
 /// else throws ConfigError ("ouster_os1_64.columns = ...").
 SpinningLidarConfig ouster_os1_64(int columns = 1024, double rate_hz = 10.0);
+
+/// Ouster OS0-64-like ultra-wide LiDAR for confined spaces: 64 rings uniform over ±45° (the
+/// OS0's 90° vertical field of view), the OS1's lidar modes (columns × rate_hz as
+/// ouster_os1_64, else ConfigError "ouster_os0_64.columns = ..."), 0.3–50 m, and the OS1's
+/// return model (ouster_os1_returns). Provenance: the ±45° field of view and the modes are
+/// Ouster's; the range window and the noise are approximate (shorter range than the OS1, as
+/// for the OS0, not datasheet figures).
+SpinningLidarConfig ouster_os0_64(int columns = 1024, double rate_hz = 10.0);
 
 /// Velodyne HDL-64E (S2/S3 datasheet): 64 lasers from +2.0° to −24.8° (26.8° vertical FOV) in
 /// two blocks, approximated as upper 32 lasers every 1/3° from +2.0° to −8.33° and lower 32

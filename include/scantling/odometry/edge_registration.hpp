@@ -1,0 +1,82 @@
+#pragma once
+/// @file
+/// LiODOM pose estimation (SPEC §2): edge points against lines of the local map.
+///
+/// For each edge p (sensor frame) moved into the world with the current pose, its k nearest
+/// local-map points are accepted as a line when their covariance has one dominant eigenvalue;
+/// the residual is the point-to-line distance d_e = |(p − N1) × (N1 − N2)| / |N1 − N2|, written
+/// as the 3-vector (I − uuᵀ)(p − c) whose norm is d_e (c the neighbours' centroid, u the line
+/// direction), weighted by ω = 1 − (r − r_min)/(r_max − r_min), r the sensor-frame range.
+/// J = ½ Σ ρ(ω² d_e²) with ρ Huber is minimised over the 6-DoF pose by Gauss-Newton on
+/// iteratively reweighted least squares, correspondences re-found at each outer iteration.
+///
+/// Own Gauss-Newton rather than Ceres: the problem is a dense 6×6 normal system per
+/// iteration; Ceres' per-residual cost-function overhead dominates at this size
+/// (docs/benchmarks.md, "LiODOM solver").
+///
+/// Degeneracy (SPEC §11): the 6×6 information JᵀWJ is eigen-decomposed; directions whose
+/// eigenvalue falls below `degeneracy_ratio` × the largest are reported. With
+/// `remap_degenerate` the update along them is removed (solution remapping), so that the pose
+/// keeps its initial value there: right when the initial pose comes from another sensor (a
+/// VIO prior on a smooth hull), wrong when it is only the constant-velocity model (a weakly
+/// observed direction then follows the last velocity for ever: measured in docs/results.md).
+#include <Eigen/Geometry>
+#include <cstddef>
+#include <string_view>
+
+#include <scantling/core/parallel.hpp>
+#include <scantling/core/se3.hpp>
+#include <scantling/odometry/edge_features.hpp>
+#include <scantling/odometry/local_map.hpp>
+
+namespace scantling::odometry {
+
+struct EdgeRegistrationConfig {
+    int num_neighbors = 5;                 ///< k of the line fit (LOAM: 5)
+    double max_neighbor_distance_m = 1.0;  ///< farthest of the k neighbours, metres
+    double line_eigen_ratio = 3.0;         ///< λ1 ≥ ratio · λ2 makes a line (A-LOAM: 3)
+    double huber_delta_m = 0.1;            ///< Huber threshold on ω·d_e, metres
+    int max_iterations = 12;               ///< outer iterations (correspondences re-found)
+    int inner_iterations = 2;              ///< Gauss-Newton steps per set of correspondences
+    int min_correspondences = 30;          ///< fewer: the sweep is not registered
+    double convergence_translation_m = 1e-4;
+    double convergence_rotation_rad = 1e-5;
+    /// Directions of the information matrix with eigenvalue < ratio × the largest are
+    /// degenerate (0 = never). Translation and rotation are compared after scaling rotation by
+    /// the mean edge range, so that the ratio is unit-free.
+    double degeneracy_ratio = 1e-3;
+    /// Keep the initial pose along degenerate directions (set by LiODOM when a motion prior
+    /// from another sensor gives the initial pose).
+    bool remap_degenerate = false;
+    bool range_weighting = true;  ///< ω as in SPEC §2 (false: ω = 1)
+    ParallelConfig parallel{};
+    void validate(std::string_view prefix = "registration") const;
+};
+
+struct EdgeRegistrationResult {
+    Eigen::Isometry3d T_world_sensor = Eigen::Isometry3d::Identity();
+    bool converged = false;   ///< the update fell below the thresholds
+    bool registered = false;  ///< enough correspondences: the pose comes from the data
+    int iterations = 0;
+    std::size_t num_correspondences = 0;
+    double rmse_m = 0.0;  ///< of the unweighted point-to-line distances of the inliers
+    /// JᵀWJ at the solution, (ρ, ω) order as se3_exp (rotation in rad, not scaled).
+    Matrix6d information = Matrix6d::Zero();
+    /// Eigenvalues of the scaled information, ascending, and how many are degenerate.
+    Vector6d eigenvalues = Vector6d::Zero();
+    int num_degenerate = 0;
+    /// Smallest / largest eigenvalue of the scaled information (0 = a null direction).
+    double min_eigen_ratio = 0.0;
+    /// Unit directions (columns, (ρ, ω) order, scaled frame) that were degenerate.
+    Eigen::Matrix<double, 6, Eigen::Dynamic> degenerate_directions;
+};
+
+/// Registers `edges` (sensor frame, with ranges) to `map` from `T_init` (world ← sensor).
+/// Never throws on data: too few correspondences give registered = false and T_init back.
+/// `min_range_m`/`max_range_m` are the range gate the edges were extracted with (for ω).
+EdgeRegistrationResult register_edges(const EdgeFeatures& edges, const LocalMap& map,
+                                      const Eigen::Isometry3d& T_init, double min_range_m,
+                                      double max_range_m,
+                                      const EdgeRegistrationConfig& config = {});
+
+}  // namespace scantling::odometry

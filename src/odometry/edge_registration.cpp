@@ -1,0 +1,206 @@
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <scantling/core/error.hpp>
+#include <scantling/odometry/edge_registration.hpp>
+#include <string>
+#include <vector>
+
+namespace scantling::odometry {
+namespace {
+
+void require(bool ok, const std::string& prefix, const char* field, double value,
+             const char* expected) {
+    if (!ok) {
+        throw ConfigError(prefix + "." + field + " = " + std::to_string(value) + ", expected " +
+                          expected);
+    }
+}
+
+/// A line of the local map: a point on it and its unit direction.
+struct Line {
+    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+    Eigen::Vector3d direction = Eigen::Vector3d::UnitX();
+    bool valid = false;
+};
+
+/// The k neighbours of `query` as a line, or invalid (too few, too far, not line-like).
+Line fit_line(const LocalMap& map, const Eigen::Vector3d& query,
+              const EdgeRegistrationConfig& config, std::vector<Eigen::Vector3d>& points,
+              std::vector<double>& distances) {
+    Line line;
+    const auto k = static_cast<std::size_t>(config.num_neighbors);
+    if (map.knn(query, k, points, distances) < k) return line;
+    if (distances.back() > config.max_neighbor_distance_m * config.max_neighbor_distance_m) {
+        return line;
+    }
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    for (const auto& p : points) mean += p;
+    mean /= static_cast<double>(k);
+    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+    for (const auto& p : points) cov += (p - mean) * (p - mean).transpose();
+    cov /= static_cast<double>(k);
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+    eig.computeDirect(cov);
+    const Eigen::Vector3d& lambda = eig.eigenvalues();  // ascending
+    if (!(lambda(2) > 0.0) || lambda(2) < config.line_eigen_ratio * lambda(1)) return line;
+    line.centroid = mean;
+    line.direction = eig.eigenvectors().col(2).normalized();
+    line.valid = true;
+    return line;
+}
+
+double range_weight(double range_m, double min_range_m, double max_range_m, bool enabled) {
+    if (!enabled || !(max_range_m > min_range_m)) return 1.0;
+    const double w = 1.0 - (range_m - min_range_m) / (max_range_m - min_range_m);
+    return std::clamp(w, 0.0, 1.0);
+}
+
+struct NormalEquations {
+    Matrix6d H = Matrix6d::Zero();
+    Vector6d g = Vector6d::Zero();
+    std::size_t count = 0;
+    double sum_sq_distance = 0.0;
+};
+
+NormalEquations linearize(const EdgeFeatures& edges, const std::vector<Line>& lines,
+                          const std::vector<double>& weights, const Eigen::Isometry3d& T,
+                          double huber_delta_m) {
+    NormalEquations ne;
+    for (std::size_t i = 0; i < lines.size(); ++i) {
+        if (!lines[i].valid) continue;
+        const Eigen::Vector3d q = T * edges.points[i];
+        const Eigen::Vector3d& u = lines[i].direction;
+        const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - u * u.transpose();
+        const Eigen::Vector3d r = P * (q - lines[i].centroid);
+        const double d = r.norm();
+        const double omega = weights[i];
+        const double s = omega * d;
+        // IRLS weight of the Huber loss on the weighted residual.
+        const double huber = s <= huber_delta_m ? 1.0 : huber_delta_m / s;
+        const double w = huber * omega * omega;
+        Eigen::Matrix<double, 3, 6> J;
+        J.leftCols<3>() = P;
+        J.rightCols<3>() = -P * hat(q);
+        ne.H.noalias() += w * J.transpose() * J;
+        ne.g.noalias() += w * J.transpose() * r;
+        ne.sum_sq_distance += d * d;
+        ++ne.count;
+    }
+    return ne;
+}
+
+}  // namespace
+
+void EdgeRegistrationConfig::validate(std::string_view prefix) const {
+    const std::string p(prefix);
+    require(num_neighbors >= 2, p, "num_neighbors", num_neighbors, ">= 2");
+    require(max_neighbor_distance_m > 0.0 && std::isfinite(max_neighbor_distance_m), p,
+            "max_neighbor_distance_m", max_neighbor_distance_m, "> 0");
+    require(line_eigen_ratio >= 1.0 && std::isfinite(line_eigen_ratio), p, "line_eigen_ratio",
+            line_eigen_ratio, ">= 1");
+    require(huber_delta_m > 0.0 && std::isfinite(huber_delta_m), p, "huber_delta_m", huber_delta_m,
+            "> 0");
+    require(max_iterations >= 1, p, "max_iterations", max_iterations, ">= 1");
+    require(inner_iterations >= 1, p, "inner_iterations", inner_iterations, ">= 1");
+    require(min_correspondences >= 6, p, "min_correspondences", min_correspondences, ">= 6");
+    require(convergence_translation_m >= 0.0, p, "convergence_translation_m",
+            convergence_translation_m, ">= 0");
+    require(convergence_rotation_rad >= 0.0, p, "convergence_rotation_rad",
+            convergence_rotation_rad, ">= 0");
+    require(degeneracy_ratio >= 0.0 && degeneracy_ratio < 1.0, p, "degeneracy_ratio",
+            degeneracy_ratio, "in [0, 1)");
+    parallel.validate(p + ".parallel");
+}
+
+EdgeRegistrationResult register_edges(const EdgeFeatures& edges, const LocalMap& map,
+                                      const Eigen::Isometry3d& T_init, double min_range_m,
+                                      double max_range_m, const EdgeRegistrationConfig& config) {
+    config.validate();
+    EdgeRegistrationResult result;
+    result.T_world_sensor = T_init;
+    const std::size_t n = edges.points.size();
+    if (n < static_cast<std::size_t>(config.min_correspondences) || map.empty()) return result;
+
+    std::vector<double> weights(n);
+    double mean_range = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+        const double r = i < edges.ranges_m.size() ? edges.ranges_m[i] : edges.points[i].norm();
+        weights[i] = range_weight(r, min_range_m, max_range_m, config.range_weighting);
+        mean_range += r;
+    }
+    mean_range = std::max(mean_range / static_cast<double>(n), 1e-3);
+    // Rotation in "metres at the mean range", so eigenvalues of translation and rotation compare.
+    Vector6d scale;
+    scale << 1.0, 1.0, 1.0, 1.0 / mean_range, 1.0 / mean_range, 1.0 / mean_range;
+    const Matrix6d D = scale.asDiagonal();
+
+    Eigen::Isometry3d T = T_init;
+    std::vector<Line> lines(n);
+    NormalEquations ne;
+    for (int outer = 0; outer < config.max_iterations; ++outer) {
+        parallel_for(config.parallel, n, 256, [&](std::size_t begin, std::size_t end) {
+            std::vector<Eigen::Vector3d> points;
+            std::vector<double> distances;
+            for (std::size_t i = begin; i < end; ++i) {
+                lines[i] = fit_line(map, T * edges.points[i], config, points, distances);
+            }
+        });
+        bool converged = false;
+        for (int inner = 0; inner < config.inner_iterations; ++inner) {
+            ne = linearize(edges, lines, weights, T, config.huber_delta_m);
+            if (ne.count < static_cast<std::size_t>(config.min_correspondences)) {
+                result.T_world_sensor = T_init;
+                result.num_correspondences = ne.count;
+                result.iterations = outer + 1;
+                return result;
+            }
+            const Matrix6d Hs = D * ne.H * D;
+            const Vector6d gs = D * ne.g;
+            Eigen::SelfAdjointEigenSolver<Matrix6d> eig(Hs);
+            const Vector6d& lambda = eig.eigenvalues();
+            const double threshold = config.degeneracy_ratio * lambda(5);
+            Vector6d step_s = Vector6d::Zero();
+            int degenerate = 0;
+            // Without remapping, a tiny floor keeps a truly null direction from blowing up.
+            const double floor = 1e-12 * std::max(lambda(5), 1e-300);
+            for (int j = 0; j < 6; ++j) {
+                const bool weak = !(lambda(j) > threshold) || !(lambda(j) > 0.0);
+                if (weak) ++degenerate;
+                if ((weak && config.remap_degenerate) || !(lambda(j) > floor)) continue;
+                const Vector6d v = eig.eigenvectors().col(j);
+                step_s -= v * (v.dot(gs) / lambda(j));
+            }
+            const Vector6d step = D * step_s;
+            T = se3_exp(step) * T;
+            result.eigenvalues = lambda;
+            result.min_eigen_ratio = lambda(5) > 0.0 ? std::max(lambda(0), 0.0) / lambda(5) : 0.0;
+            result.num_degenerate = degenerate;
+            result.degenerate_directions.resize(6, degenerate);
+            for (int j = 0, c = 0; j < 6; ++j) {
+                if (!(lambda(j) > threshold) || !(lambda(j) > 0.0)) {
+                    result.degenerate_directions.col(c++) = eig.eigenvectors().col(j);
+                }
+            }
+            converged = step.head<3>().norm() < config.convergence_translation_m &&
+                        step.tail<3>().norm() < config.convergence_rotation_rad;
+            if (converged) break;
+        }
+        result.iterations = outer + 1;
+        if (converged) {
+            result.converged = true;
+            break;
+        }
+    }
+    // Statistics at the final pose with the last correspondences.
+    ne = linearize(edges, lines, weights, T, config.huber_delta_m);
+    result.T_world_sensor = T;
+    result.registered = true;
+    result.num_correspondences = ne.count;
+    result.information = ne.H;
+    result.rmse_m =
+        ne.count > 0 ? std::sqrt(ne.sum_sq_distance / static_cast<double>(ne.count)) : 0.0;
+    return result;
+}
+
+}  // namespace scantling::odometry

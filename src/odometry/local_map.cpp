@@ -1,0 +1,88 @@
+#include <algorithm>
+#include <cmath>
+#include <scantling/core/error.hpp>
+#include <scantling/odometry/local_map.hpp>
+#include <string>
+
+namespace scantling::odometry {
+
+void LocalMapConfig::validate(std::string_view prefix) const {
+    const std::string p(prefix);
+    if (!(radius_m > 0.0) || !std::isfinite(radius_m)) {
+        throw ConfigError(p + ".radius_m = " + std::to_string(radius_m) + ", expected > 0");
+    }
+    if (num_recent_sweeps < 0) {
+        throw ConfigError(p + ".num_recent_sweeps = " + std::to_string(num_recent_sweeps) +
+                          ", expected >= 0");
+    }
+    if (!(rebuild_distance_m >= 0.0) || !std::isfinite(rebuild_distance_m)) {
+        throw ConfigError(p + ".rebuild_distance_m = " + std::to_string(rebuild_distance_m) +
+                          ", expected >= 0");
+    }
+}
+
+LocalMap::LocalMap(const LocalMapConfig& config) : config_(config) { config_.validate(); }
+
+void LocalMap::update(const mapping::CellMap& map, const Eigen::Vector3d& sensor_position_m,
+                      std::vector<Eigen::Vector3d> sweep_edges_world, bool force_cells) {
+    if (config_.num_recent_sweeps > 0) {
+        recent_sweeps_.push_back(std::move(sweep_edges_world));
+        while (recent_sweeps_.size() > static_cast<std::size_t>(config_.num_recent_sweeps)) {
+            recent_sweeps_.pop_front();
+        }
+        std::vector<Eigen::Vector3d> recent;
+        std::size_t total = 0;
+        for (const auto& sweep : recent_sweeps_) total += sweep.size();
+        recent.reserve(total);
+        for (const auto& sweep : recent_sweeps_)
+            recent.insert(recent.end(), sweep.begin(), sweep.end());
+        recent_ = std::make_unique<KdTree>(std::move(recent));
+    }
+    const bool moved =
+        (sensor_position_m - last_gather_position_m_).norm() >= config_.rebuild_distance_m;
+    if (!has_cells_ || moved || force_cells) {
+        std::vector<Eigen::Vector3d> points;
+        map.gather_near(sensor_position_m, config_.radius_m, points);
+        cells_ = std::make_unique<KdTree>(std::move(points));
+        last_gather_position_m_ = sensor_position_m;
+        has_cells_ = true;
+        ++num_cell_rebuilds_;
+    }
+}
+
+std::size_t LocalMap::knn(const Eigen::Vector3d& query, std::size_t k,
+                          std::vector<Eigen::Vector3d>& points,
+                          std::vector<double>& distances_sq_m2) const {
+    // Small fixed buffers: k is a handful, so a merge of two sorted lists beats anything clever.
+    thread_local std::vector<std::size_t> idx_a, idx_b;
+    thread_local std::vector<double> d_a, d_b;
+    const std::size_t na = cells_ ? cells_->knn(query, k, idx_a, d_a) : 0;
+    const std::size_t nb = recent_ ? recent_->knn(query, k, idx_b, d_b) : 0;
+    const std::size_t n = std::min(k, na + nb);
+    points.resize(n);
+    distances_sq_m2.resize(n);
+    std::size_t a = 0, b = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        if (b >= nb || (a < na && d_a[a] <= d_b[b])) {
+            points[i] = cells_->points()[idx_a[a]];
+            distances_sq_m2[i] = d_a[a++];
+        } else {
+            points[i] = recent_->points()[idx_b[b]];
+            distances_sq_m2[i] = d_b[b++];
+        }
+    }
+    return n;
+}
+
+std::size_t LocalMap::num_cell_points() const { return cells_ ? cells_->size() : 0; }
+std::size_t LocalMap::num_recent_points() const { return recent_ ? recent_->size() : 0; }
+std::size_t LocalMap::size() const { return num_cell_points() + num_recent_points(); }
+
+void LocalMap::clear() {
+    cells_.reset();
+    recent_.reset();
+    recent_sweeps_.clear();
+    has_cells_ = false;
+}
+
+}  // namespace scantling::odometry

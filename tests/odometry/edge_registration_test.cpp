@@ -1,0 +1,137 @@
+#include <gtest/gtest.h>
+
+#include <scantling/core/error.hpp>
+#include <scantling/core/random.hpp>
+#include <scantling/core/se3.hpp>
+#include <scantling/odometry/edge_registration.hpp>
+
+namespace scantling::odometry {
+namespace {
+
+/// Points every 5 cm along `n` lines with the given directions through random anchors.
+std::vector<Eigen::Vector3d> lines_cloud(const std::vector<Eigen::Vector3d>& directions,
+                                         int per_direction, std::uint64_t seed,
+                                         double noise_m = 0.0) {
+    Rng rng(seed);
+    std::vector<Eigen::Vector3d> pts;
+    for (const auto& dir : directions) {
+        for (int l = 0; l < per_direction; ++l) {
+            const Eigen::Vector3d anchor(rng.uniform(-15, 15), rng.uniform(-15, 15),
+                                         rng.uniform(-3, 3));
+            for (int s = -40; s <= 40; ++s) {
+                Eigen::Vector3d p = anchor + 0.05 * s * dir.normalized();
+                p += noise_m * Eigen::Vector3d(rng.normal(), rng.normal(), rng.normal());
+                pts.push_back(p);
+            }
+        }
+    }
+    return pts;
+}
+
+EdgeFeatures edges_from(const std::vector<Eigen::Vector3d>& world,
+                        const Eigen::Isometry3d& T_world_sensor, std::size_t stride) {
+    EdgeFeatures e;
+    for (std::size_t i = 0; i < world.size(); i += stride) {
+        const Eigen::Vector3d p = T_world_sensor.inverse() * world[i];
+        e.points.push_back(p);
+        e.ranges_m.push_back(p.norm());
+    }
+    return e;
+}
+
+LocalMap map_of(const std::vector<Eigen::Vector3d>& world) {
+    mapping::CellMapConfig mc;
+    mc.max_points_per_cell = 100000;
+    mapping::CellMap map(mc);
+    map.insert(world);
+    LocalMapConfig lc;
+    lc.radius_m = 100.0;
+    lc.num_recent_sweeps = 0;
+    LocalMap local(lc);
+    local.update(map, Eigen::Vector3d::Zero(), {});
+    return local;
+}
+
+TEST(EdgeRegistration, RecoversAnOffsetFromLinesInThreeDirections) {
+    const auto world = lines_cloud({{0, 0, 1}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}}, 12, 7);
+    const LocalMap local = map_of(world);
+    const Eigen::Isometry3d T_true =
+        make_isometry(rotation_from_euler_zyx(0.01, -0.02, 0.05), Eigen::Vector3d(1.0, -0.5, 0.2));
+    // Offset the start by 0.25 m and 2 degrees of yaw.
+    const Eigen::Isometry3d T_init =
+        se3_exp((Vector6d() << 0.2, -0.15, 0.05, 0.0, 0.0, 0.035).finished()) * T_true;
+    const EdgeFeatures edges = edges_from(world, T_true, 3);
+    const EdgeRegistrationResult r = register_edges(edges, local, T_init, 0.5, 40.0);
+    ASSERT_TRUE(r.registered);
+    EXPECT_TRUE(r.converged);
+    const PoseError err = pose_error(r.T_world_sensor, T_true);
+    EXPECT_LT(err.translation_m, 1e-3);
+    EXPECT_LT(err.rotation_rad, 1e-4);
+    EXPECT_EQ(r.num_degenerate, 0);
+    EXPECT_GT(r.num_correspondences, edges.points.size() / 2);
+    EXPECT_LT(r.rmse_m, 1e-3);
+}
+
+TEST(EdgeRegistration, ParallelLinesLeaveTheirDirectionAtThePrediction) {
+    // Only vertical lines: nothing constrains z, so z must stay where the prediction put it.
+    const auto world = lines_cloud({{0, 0, 1}}, 40, 8);
+    EdgeRegistrationConfig remap;  // as LiODOM runs it with a motion prior
+    remap.remap_degenerate = true;
+    const LocalMap local = map_of(world);
+    const Eigen::Isometry3d T_true = Eigen::Isometry3d::Identity();
+    Eigen::Isometry3d T_init = T_true;
+    T_init.translation() = Eigen::Vector3d(0.1, 0.1, 0.3);
+    const EdgeRegistrationResult r =
+        register_edges(edges_from(world, T_true, 3), local, T_init, 0.5, 40.0, remap);
+    ASSERT_TRUE(r.registered);
+    EXPECT_GE(r.num_degenerate, 1);
+    EXPECT_NEAR(r.T_world_sensor.translation().x(), 0.0, 2e-3);
+    EXPECT_NEAR(r.T_world_sensor.translation().y(), 0.0, 2e-3);
+    // Kept, not drifted (the small change comes from the roll/pitch steps about the origin).
+    EXPECT_NEAR(r.T_world_sensor.translation().z(), 0.3, 1e-4);
+}
+
+TEST(EdgeRegistration, TooFewCorrespondencesReturnThePriorUnregistered) {
+    const auto world = lines_cloud({{0, 0, 1}, {1, 0, 0}}, 5, 9);
+    const LocalMap local = map_of(world);
+    EdgeFeatures far;  // points nowhere near the map
+    for (int i = 0; i < 100; ++i) {
+        far.points.emplace_back(500.0 + i, 500.0, 0.0);
+        far.ranges_m.push_back(far.points.back().norm());
+    }
+    Eigen::Isometry3d T_init = Eigen::Isometry3d::Identity();
+    T_init.translation().x() = 3.0;
+    const EdgeRegistrationResult r = register_edges(far, local, T_init, 0.5, 40.0);
+    EXPECT_FALSE(r.registered);
+    EXPECT_TRUE(r.T_world_sensor.isApprox(T_init));
+    EXPECT_FALSE(register_edges(EdgeFeatures{}, local, T_init, 0.5, 40.0).registered);
+}
+
+TEST(EdgeRegistration, HuberKeepsOutliersFromPullingThePose) {
+    const auto world = lines_cloud({{0, 0, 1}, {1, 0, 0}, {0, 1, 0}}, 12, 10);
+    const LocalMap local = map_of(world);
+    const Eigen::Isometry3d T_true = Eigen::Isometry3d::Identity();
+    EdgeFeatures edges = edges_from(world, T_true, 3);
+    // 15 % of the edges displaced by 0.5 m (moving objects, wrong lines).
+    Rng rng(11);
+    for (std::size_t i = 0; i < edges.points.size(); i += 7) {
+        edges.points[i] += Eigen::Vector3d(0.5, 0.0, 0.0);
+    }
+    const EdgeRegistrationResult r = register_edges(edges, local, T_true, 0.5, 40.0);
+    ASSERT_TRUE(r.registered);
+    EXPECT_LT(pose_error(r.T_world_sensor, T_true).translation_m, 0.03);
+}
+
+TEST(EdgeRegistration, BadConfigNamesTheField) {
+    EdgeRegistrationConfig c;
+    c.line_eigen_ratio = 0.5;
+    try {
+        c.validate();
+        FAIL();
+    } catch (const ConfigError& e) {
+        EXPECT_NE(std::string(e.what()).find("registration.line_eigen_ratio"), std::string::npos);
+    }
+}
+
+}  // namespace
+}  // namespace scantling::odometry
