@@ -192,6 +192,8 @@ EdgeRegistrationResult register_edges(const EdgeFeatures& edges, const LocalMap&
             break;
         }
     }
+    // Thousands of composed updates would drift off SO(3).
+    T.linear() = orthonormalize(T.linear());
     // Statistics at the final pose with the last correspondences.
     ne = linearize(edges, lines, weights, T, config.huber_delta_m);
     result.T_world_sensor = T;

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <scantling/core/error.hpp>
 #include <scantling/core/normals.hpp>
+#include <scantling/core/se3.hpp>
 #include <scantling/core/voxel_grid.hpp>
 #include <scantling/odometry/icp_odometry.hpp>
 
@@ -143,6 +144,8 @@ std::vector<FrameReport> run_icp_odometry(std::size_t num_sweeps, const SweepRea
                     step_m, dt, limit_m);
             } else {
                 T_new = T * result.T_target_source;
+                // Chained products drift off SO(3); writers and readers check orthonormality.
+                T_new.linear() = orthonormalize(T_new.linear());
                 r.status = FrameStatus::kOk;
             }
         }

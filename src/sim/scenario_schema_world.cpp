@@ -68,6 +68,9 @@ ConfigSchema<StorageTankConfig> storage_tank_schema() {
         .field("num_nozzles", &C::num_nozzles, "", kNonNegative)
         .field("nozzle_radius_m", &C::nozzle_radius_m, "", kPositive)
         .field("nozzle_length_m", &C::nozzle_length_m, "", kPositive)
+        .field("bund_half_size_m", &C::bund_half_size_m,
+               "ground and square bund wall of this half-size, m (0 = none)", kNonNegative)
+        .field("bund_height_m", &C::bund_height_m, "", kPositive)
         .section("defects", &C::defects, defects_schema());
     return s;
 }

@@ -87,6 +87,9 @@ void StorageTankConfig::validate(std::string_view prefix) const {
     positive(prefix, "nozzle_length_m", nozzle_length_m);
     require(segments >= 2 * vertical_seams_per_course, prefix, "segments", segments,
             ">= 2 * vertical_seams_per_course");
+    require(bund_half_size_m == 0.0 || bund_half_size_m >= 0.5 * diameter_m + 1.0, prefix,
+            "bund_half_size_m", bund_half_size_m, "0 (none) or >= diameter_m / 2 + 1");
+    positive(prefix, "bund_height_m", bund_height_m);
     defects.validate(sub(prefix, "defects"));
 }
 

@@ -124,6 +124,33 @@ WorldMetadata metadata_of(const Tank& tank) {
     return m;
 }
 
+// Ground slab, square bund wall (0.3 m thick) and three pipe supports outside the bund.
+void add_tank_farm(MeshBuilder& builder, const StorageTankConfig& c) {
+    const double b = c.bund_half_size_m;
+    const double t = 0.3;
+    const int ground = builder.surface("ground");
+    const int bund = builder.surface("bund");
+    const double g = b + 15.0;
+    builder.add_box({{0.0, 0.0, -0.25}, Eigen::Matrix3d::Identity(), {g, g, 0.25}}, ground);
+    const double h = c.bund_height_m;
+    builder.add_box({{0.0, b, 0.5 * h}, Eigen::Matrix3d::Identity(), {b + t, 0.5 * t, 0.5 * h}},
+                    bund);
+    builder.add_box({{0.0, -b, 0.5 * h}, Eigen::Matrix3d::Identity(), {b + t, 0.5 * t, 0.5 * h}},
+                    bund);
+    builder.add_box({{b, 0.0, 0.5 * h}, Eigen::Matrix3d::Identity(), {0.5 * t, b - t, 0.5 * h}},
+                    bund);
+    builder.add_box({{-b, 0.0, 0.5 * h}, Eigen::Matrix3d::Identity(), {0.5 * t, b - t, 0.5 * h}},
+                    bund);
+    const int supports = builder.surface("pipe_supports");
+    for (int i = 0; i < 3; ++i) {
+        const double y = -0.5 * b + 0.5 * b * i;
+        builder.add_box({{b + 4.0, y, 2.0}, Eigen::Matrix3d::Identity(), {0.2, 0.2, 2.0}},
+                        supports);
+        builder.add_box({{b + 4.0, y, 4.1}, Eigen::Matrix3d::Identity(), {1.5, 0.2, 0.1}},
+                        supports);
+    }
+}
+
 }  // namespace
 
 World build_storage_tank(const StorageTankConfig& config) {
@@ -141,6 +168,7 @@ World build_storage_tank(const StorageTankConfig& config) {
         builder.surface("bottom"));
     add_seams(builder, tank);
     add_nozzles(builder, tank);
+    if (config.bund_half_size_m > 0.0) add_tank_farm(builder, config);
     World world = builder.finish(metadata_of(tank));
     const int shell = find_surface(world.metadata, "shell");
     detail::place_defects(world, config.defects, std::span<const int>(&shell, 1),

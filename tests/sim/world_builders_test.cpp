@@ -126,6 +126,33 @@ TEST(StorageTank, RaysTowardsTheAxisFromOutsideAlwaysHit) {
     }
 }
 
+TEST(StorageTank, TankFarmAddsGroundBundWallAndPipeSupports) {
+    StorageTankConfig config;
+    config.bund_half_size_m = 14.0;
+    const World farm = build_storage_tank(config);
+    const RayCaster caster(farm.mesh, farm.surface_tags);
+    // Down from 5 m beside the tank: the ground's top at z = 0.
+    const RayHit ground = caster.cast({9.0, 0.0, 5.0}, {0.0, 0.0, -1.0}, 20.0);
+    ASSERT_TRUE(ground.hit);
+    EXPECT_NEAR(ground.range_m, 5.0, kExactTol_m);
+    EXPECT_EQ(ground.surface_tag, find_surface(farm.metadata, "ground"));
+    // Outwards at 0.5 m height, away from the corners: the bund's inner face at 14 - 0.15 m.
+    const RayHit bund = caster.cast({7.0, 3.0, 0.5}, {1.0, 0.0, 0.0}, 20.0);
+    ASSERT_TRUE(bund.hit);
+    EXPECT_NEAR(bund.range_m, 14.0 - 0.15 - 7.0, kExactTol_m);
+    EXPECT_EQ(bund.surface_tag, find_surface(farm.metadata, "bund"));
+    EXPECT_GT(testing::area_of(farm, "pipe_supports"), 0.0);
+    // The tank alone has none of them; a bund inside the tank is refused, naming the field.
+    EXPECT_LT(find_surface(build_storage_tank().metadata, "bund"), 0);
+    config.bund_half_size_m = 5.0;
+    try {
+        build_storage_tank(config);
+        FAIL();
+    } catch (const ConfigError& e) {
+        EXPECT_NE(std::string(e.what()).find("storage_tank.bund_half_size_m"), std::string::npos);
+    }
+}
+
 TEST(MeshWorld, LoadsAFileWithScaleAndPose) {
     const fs::path path = fs::temp_directory_path() /
                           ("scantling_sim_mesh_world_" + std::to_string(getpid()) + ".ply");

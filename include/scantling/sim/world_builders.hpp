@@ -81,6 +81,11 @@ struct StorageTankConfig {
     int num_nozzles = 4;
     double nozzle_radius_m = 0.3;
     double nozzle_length_m = 0.5;  ///< from the shell to the flange face
+    /// Tank-farm surroundings: a ground slab and a square bund (containment) wall of this
+    /// half-size around the tank, metres (0 = the tank alone, floating in empty space). The
+    /// bund's corners and the pipe supports beside it break the tank's rotational symmetry.
+    double bund_half_size_m = 0.0;
+    double bund_height_m = 1.2;
     DefectPlacementConfig defects{};
 
     void validate(std::string_view prefix = "storage_tank") const;
