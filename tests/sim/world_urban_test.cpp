@@ -286,14 +286,15 @@ TEST(WorldUrban, ShippedTankFlightsRunInsideAndAroundTheirTanks) {
     std::size_t on_tank = 0;
     for (const Eigen::Vector3d& p : outside.points) {
         // The shell (r 6 m) and what stands proud of it (seams, nozzles up to 6.5 m + flange),
+        // within range noise,
         // or the tank farm: the ground (z = 0, within noise), the bund wall (within 14.15 m, up
         // to 1.2 m high) and the pipe supports beyond it (up to 18 m out, 4.2 m high).
         const Eigen::Vector3d w = tank.sweep_pose_gt(1) * p;
         const bool tank_part = w.head<2>().norm() < 7.0;
         on_tank += tank_part ? 1 : 0;
         ASSERT_TRUE(tank_part || w.z() < 0.1 ||
-                    (w.cwiseAbs().head<2>().maxCoeff() < 14.2 && w.z() < 1.21) ||
-                    (w.x() > 16.4 && w.x() < 19.6 && w.z() < 4.21))
+                    (w.cwiseAbs().head<2>().maxCoeff() < 14.3 && w.z() < 1.3) ||
+                    (w.x() > 16.3 && w.x() < 19.7 && w.z() < 4.3))
             << w.transpose();
         ASSERT_GT(p.norm(), 3.5);  // 5 m stand-off, less the nozzles
     }
