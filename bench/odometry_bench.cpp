@@ -6,7 +6,7 @@
 // Every sweep is read or simulated once, before the timed loops; the reader hands the odometry
 // a copy of the sweep held in memory (the copy is inside the timed loop: its cost is printed).
 // The memory after a 1 km run is measured by its own executable (odometry_bench_memory.cpp), so
-// that its peak RSS is the odometry's alone.
+// that its peak RSS is that run's alone.
 #include <unistd.h>
 
 #include <algorithm>
@@ -88,31 +88,41 @@ void odometry_case(benchmark::State& state, const SweepSequence& sequence, bool 
         return;
     }
     std::vector<odometry::FrameReport> reports, all;
+    std::vector<Clock::time_point> done_at;
+    const odometry::FrameCallback on_frame = [&](const odometry::FrameReport&) {
+        done_at.push_back(Clock::now());
+    };
     double seconds = 0.0;
     for (auto _ : state) {
+        done_at.clear();
         const auto t0 = Clock::now();
-        reports = run(data.sweeps.size(), reader_of(data.sweeps));
+        reports = run(data.sweeps.size(), reader_of(data.sweeps), on_frame);
         seconds += seconds_since(t0);
         benchmark::DoNotOptimize(reports.data());
         all.insert(all.end(), reports.begin(), reports.end());
     }
     set_trajectory_counters(state, data, poses_of(reports), seconds);
+    state.counters["fps_steady"] = steady_fps(done_at);
     set_stage_counters(state, all, reports, icp);
 }
 
 void liodom(benchmark::State& state, const SweepSequence* sequence, int threads) {
     const auto config = liodom_config(sequence->preset(), threads);
-    odometry_case(state, *sequence, false, [&](std::size_t n, const odometry::SweepReader& read) {
-        return odometry::run_odometry(n, read, config);
-    });
+    odometry_case(state, *sequence, false,
+                  [&](std::size_t n, const odometry::SweepReader& read,
+                      const odometry::FrameCallback& on_frame) {
+                      return odometry::run_odometry(n, read, config, on_frame);
+                  });
 }
 
 void scan_icp(benchmark::State& state, const SweepSequence* sequence, int threads) {
     const auto config =
         odometry::icp_odometry_config_like(liodom_config(sequence->preset(), threads));
-    odometry_case(state, *sequence, true, [&](std::size_t n, const odometry::SweepReader& read) {
-        return odometry::run_icp_odometry(n, read, config);
-    });
+    odometry_case(state, *sequence, true,
+                  [&](std::size_t n, const odometry::SweepReader& read,
+                      const odometry::FrameCallback& on_frame) {
+                      return odometry::run_icp_odometry(n, read, config, on_frame);
+                  });
 }
 
 void add(const std::string& name, void (*fn)(benchmark::State&, const SweepSequence*, int),
@@ -152,10 +162,15 @@ SweepSequence::Data simulate(const std::string& scenario_file) {
     const auto dir = std::filesystem::temp_directory_path() /
                      fmt::format("scantling_odometry_bench_{}_{}", scenario.name, ::getpid());
     std::filesystem::remove_all(dir);
-    sim::run_scenario(scenario, dir.string());
-    SweepSequence::Data data = read_all(*io::open_sweep_source(dir.string()));
-    std::filesystem::remove_all(dir);
-    return data;
+    try {
+        sim::run_scenario(scenario, dir.string());
+        SweepSequence::Data data = read_all(*io::open_sweep_source(dir.string()));
+        std::filesystem::remove_all(dir);
+        return data;
+    } catch (...) {
+        std::filesystem::remove_all(dir);
+        throw;
+    }
 }
 
 std::vector<const SweepSequence*> make_sequences() {

@@ -2,6 +2,7 @@
 /// @file Pieces shared by the LiODOM speed benchmark's files (bench/odometry_bench*.cpp).
 
 #include <Eigen/Geometry>
+#include <chrono>
 #include <functional>
 #include <optional>
 #include <string>
@@ -55,6 +56,12 @@ double path_length_m(const std::vector<Eigen::Isometry3d>& poses);
 
 /// Median of `values` (0 when empty).
 double median(std::vector<double> values);
+
+/// Frames completed per second once started: over the frames after `kSteadyFromFrame`, from
+/// the completion time of each frame (`done_at`). Frames 0 and 1 are left out: the first starts
+/// the map, the second runs LiODOM's one-off GICP bootstrap. 0 when there are too few frames.
+inline constexpr std::size_t kSteadyFromFrame = 2;
+double steady_fps(const std::vector<std::chrono::steady_clock::time_point>& done_at);
 
 /// Frames per second, distance travelled and, with ground truth, the end-point error, as
 /// counters: `fps` (frames × runs / seconds), `path_m` (estimated), `gt_path_m` and `end_err_m`

@@ -1,16 +1,15 @@
-// LiODOM memory after a 1 km run (issue 4, item 6): the kitti preset (rings by elevation, see
-// run_urban) over the simulated urban
+// LiODOM memory after a 1 km run (issue 4, item 6): the kitti preset over the simulated urban
 // drive (scenarios/urban_drive_hdl64.yaml: an HDL-64E-like 64 × 1024 LiDAR, 2,011 sweeps,
 // 1.18 km), one LidarOdometry fed sweep by sweep so that its map can be inspected at the end.
 // Its own executable, so that the process's peak RSS (VmHWM) is this run's alone.
 //
 // The recording is too large to generate here (1.9 GB, minutes of simulation): point the
-// environment variable SCANTLING_URBAN_RECORDING at it (`scantling simulate
+// environment variable SCANTLING_URBAN_RECORDING at it (`scantling sim
 // scenarios/urban_drive_hdl64.yaml --out DIR`); without it the benchmark is skipped.
 //
 // Reported time = time inside LidarOdometry::process (reading the sweeps from disk is not
 // timed). Extraction and registration use 2 threads; the stages run one after the other.
-#include <unistd.h>
+#include <malloc.h>
 
 #include <chrono>
 #include <cstdio>
@@ -23,7 +22,6 @@
 
 #include <scantling/io/sweep_source.hpp>
 #include <scantling/odometry/liodom.hpp>
-#include <scantling/odometry/rings.hpp>
 
 #include "bench_support.hpp"
 #include "odometry_bench.hpp"
@@ -59,22 +57,16 @@ void print_progress(const UrbanRun& run) {
     const auto& odometry = *run.odometry;
     std::printf(
         "  frame %zu: %.0f m estimated; map %zu cells, %zu points; local map %zu points; "
-        "%.1f MB\n",
+        "memory_bytes %.1f MB; process RSS %.1f MB\n",
         run.poses.size(), path_length_m(run.poses), odometry.map().num_cells(),
         odometry.map().num_points(), odometry.local_map().size(),
-        1e-6 * static_cast<double>(odometry.memory_bytes()));
+        1e-6 * static_cast<double>(odometry.memory_bytes()), proc_status_mb("VmRSS:"));
     std::fflush(stdout);
 }
 
 UrbanRun run_urban(const io::SweepSource& source) {
     UrbanRun run;
-    odometry::LiodomConfig config = liodom_config("kitti", kThreads);
-    // The recording's .bin sweeps have no ring field and are stored column by column; with the
-    // preset's scan start at azimuth 0 (for KITTI files) kAuto took that order for two rings
-    // (120 edges a sweep instead of ~3,600). The simulator's beams start on the sensor axis,
-    // so elevation clustering is exact for it.
-    config.features.rings.source = odometry::RingSource::kElevation;
-    run.odometry = std::make_unique<odometry::LidarOdometry>(config);
+    run.odometry = std::make_unique<odometry::LidarOdometry>(liodom_config("kitti", kThreads));
     for (std::size_t i = 0; i < source.size(); ++i) {
         const PointCloud sweep = source.read(i);
         const auto t0 = Clock::now();
@@ -103,6 +95,10 @@ void set_memory_counters(benchmark::State& state, const odometry::LidarOdometry&
     state.counters["rss_start_MB"] = rss_start_mb;
     state.counters["rss_end_MB"] = proc_status_mb("VmRSS:");
     state.counters["peak_rss_MB"] = proc_status_mb("VmHWM:");
+    // Free pages glibc keeps in its arenas are returned first, so that this is close to the
+    // live memory (pages holding any live block stay: fragmentation is still counted).
+    malloc_trim(0);
+    state.counters["rss_trimmed_MB"] = proc_status_mb("VmRSS:");
 }
 
 void urban_memory(benchmark::State& state, const std::string* path) {
@@ -126,6 +122,10 @@ void urban_memory(benchmark::State& state, const std::string* path) {
     state.counters["edges"] = median(run.edges);
     state.counters["not_registered"] = static_cast<double>(run.not_registered);
     set_memory_counters(state, *run.odometry, rss_start_mb);
+    // Whatever the process still holds once the odometry is gone is not the odometry's.
+    run.odometry.reset();
+    malloc_trim(0);
+    state.counters["rss_freed_MB"] = proc_status_mb("VmRSS:");
 }
 
 }  // namespace

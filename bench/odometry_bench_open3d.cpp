@@ -49,6 +49,7 @@ std::shared_ptr<O3dCloud> prepare(const O3dCloud& sweep, const odometry::IcpOdom
 
 struct O3dFrame {
     Eigen::Isometry3d T_odom_sensor = Eigen::Isometry3d::Identity();
+    Clock::time_point done_at;
     double prepare_ms = 0.0;
     double icp_ms = 0.0;
     double points = 0.0;
@@ -78,6 +79,7 @@ std::vector<O3dFrame> open3d_icp_odometry(const std::vector<std::shared_ptr<O3dC
             T = T * Eigen::Isometry3d(delta);
         }
         frames[i].T_odom_sensor = T;
+        frames[i].done_at = Clock::now();
         previous = std::move(current);
     }
     return frames;
@@ -119,8 +121,13 @@ void open3d_icp(benchmark::State& state, const SweepSequence* sequence, int thre
         }
     }
     std::vector<Eigen::Isometry3d> poses;
-    for (const O3dFrame& f : frames) poses.push_back(f.T_odom_sensor);
+    std::vector<Clock::time_point> done_at;
+    for (const O3dFrame& f : frames) {
+        poses.push_back(f.T_odom_sensor);
+        done_at.push_back(f.done_at);
+    }
     set_trajectory_counters(state, sequence->data(), poses, seconds);
+    state.counters["fps_steady"] = steady_fps(done_at);
     state.counters["prepare_ms"] = median(prepare_ms);
     state.counters["icp_ms"] = median(icp_ms);
     state.counters["points"] = median(points);

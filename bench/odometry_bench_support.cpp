@@ -69,6 +69,13 @@ double path_length_m(const std::vector<Eigen::Isometry3d>& poses) {
     return length_m;
 }
 
+double steady_fps(const std::vector<Clock::time_point>& done_at) {
+    if (done_at.size() < kSteadyFromFrame + 2) return 0.0;
+    const double frames = static_cast<double>(done_at.size() - 1 - kSteadyFromFrame);
+    return frames /
+           std::chrono::duration<double>(done_at.back() - done_at[kSteadyFromFrame]).count();
+}
+
 double median(std::vector<double> values) {
     if (values.empty()) return 0.0;
     const auto mid = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);

@@ -1,5 +1,6 @@
 // Registration against Open3D 0.16: point-to-point, point-to-plane and generalized ICP on the
-// real LiDAR pair; FPFH and global registration on the RGB-D pair (registration_bench_global).
+// real LiDAR pair; FPFH and global registration on the RGB-D pair (registration_bench_global);
+// all of them on simulated tank scans (registration_bench_tanks).
 // Both sides get the same downsampled points, normals and covariances (computed once by us,
 // copied into the Open3D clouds, outside the timed loop), the same correspondence distance and
 // iteration cap, and the same thread count: ours via ParallelConfig, Open3D via
@@ -148,14 +149,17 @@ void register_icp_benchmarks(const RegistrationPair& pair, double voxel_m) {
 
 }  // namespace scantling::bench
 
-int main(int argc, char** argv) {
+namespace {
+
+/// The real pairs of the shared data; nothing when it is absent (a message says so).
+void register_real_pair_benchmarks() {
     using namespace scantling::bench;
     const std::string dir = SCANTLING_SHARED_DATA_DIR;
     const auto source = load_shared_cloud(dir, "lidar-pair/source.ply");
     const auto target = load_shared_cloud(dir, "lidar-pair/target.ply");
     const auto src = load_shared_cloud(dir, "rgbd-pair/src.ply");
     const auto ref = load_shared_cloud(dir, "rgbd-pair/ref.ply");
-    if (!source || !target || !src || !ref) return 0;
+    if (!source || !target || !src || !ref) return;
     const auto T_lidar = read_matrix_file(dir + "/lidar-pair/T_target_source.txt");
     for (double voxel_m : {0.25, 0.1}) {
         register_icp_benchmarks(*make_lidar_pair(*source, *target, T_lidar, voxel_m), voxel_m);
@@ -165,5 +169,12 @@ int main(int argc, char** argv) {
     rgbd->target = *ref;
     rgbd->T_target_source_ref = read_matrix_file(dir + "/rgbd-pair/T_ref_src.txt");
     register_global_benchmarks(*rgbd);
-    return run_all(argc, argv);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    register_real_pair_benchmarks();
+    scantling::bench::register_tank_benchmarks();  // simulated: no shared data needed
+    return scantling::bench::run_all(argc, argv);
 }

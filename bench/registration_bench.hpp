@@ -56,5 +56,7 @@ void add_benchmark(const std::string& name, Fn fn, Args... args) {
 /// Registers the ICP cases (lidar pair at `voxel_m`) and the FPFH/global ones (RGB-D pair).
 void register_icp_benchmarks(const RegistrationPair& pair, double voxel_m);
 void register_global_benchmarks(const RegistrationPair& pair);
+/// Simulated tank scans against their CAD maps, many pairs per case (registration_bench_tanks).
+void register_tank_benchmarks();
 
 }  // namespace scantling::bench

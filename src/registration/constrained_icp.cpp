@@ -66,6 +66,7 @@ detail::IterationSettings settings_of(const ConstrainedIcpConfig& config,
             .min_correspondences = config.min_correspondences,
             .degeneracy_threshold = config.degeneracy_threshold,
             .basis = dof_basis(config.planar),
+            .covariance = {},  // kHessian: stop clouds are small patches, few cells
             .cap_violation = [&config, prior](const Eigen::Isometry3d& T) {
                 return cap_violation(T, prior, config);
             }};

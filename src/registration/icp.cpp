@@ -25,6 +25,11 @@ constexpr std::array<std::pair<IcpMethod, std::string_view>, 3> kMethodNames = {
     {IcpMethod::kGeneralized, "gicp"},
 }};
 
+constexpr std::array<std::pair<IcpCovariance, std::string_view>, 2> kCovarianceNames = {{
+    {IcpCovariance::kHessian, "hessian"},
+    {IcpCovariance::kClusteredSandwich, "clustered_sandwich"},
+}};
+
 /// Normals and covariances estimated here when the clouds lack them (owned for the call).
 struct Prepared {
     std::vector<Eigen::Vector3d> target_normals;
@@ -33,7 +38,7 @@ struct Prepared {
 };
 
 void check_inputs(const PointCloud& source, const PointCloud& target, const KdTree& tree,
-                  const Eigen::Isometry3d& T_init) {
+                  const Eigen::Isometry3d& T_init, const IcpConfig& config) {
     check_usable(source, "icp source");
     check_usable(target, "icp target");
     if (tree.size() != target.size()) {
@@ -42,6 +47,9 @@ void check_inputs(const PointCloud& source, const PointCloud& target, const KdTr
     }
     if (!T_init.matrix().allFinite()) {
         throw InputError("icp: T_target_source_init is not finite");
+    }
+    if (config.reject_back_faces && !target.has_normals()) {
+        throw InputError("icp: reject_back_faces needs target normals pointing to the free side");
     }
 }
 
@@ -78,7 +86,8 @@ detail::Problem make_problem(const PointCloud& source, const PointCloud& target,
                       .max_correspondence_distance_m = config.max_correspondence_distance_m,
                       .kernel = config.kernel,
                       .kernel_scale_m = config.kernel_scale_m,
-                      .parallel = config.parallel};
+                      .parallel = config.parallel,
+                      .front_normals = config.reject_back_faces ? &target.normals : nullptr};
     if (config.method == IcpMethod::kPointToPlane) {
         if (!target.has_normals()) prepared.target_normals = target_normals(target, tree, config);
         p.target_normals = target.has_normals() ? &target.normals : &prepared.target_normals;
@@ -113,6 +122,21 @@ IcpMethod icp_method_from_string(std::string_view name, std::string_view field) 
         "{} = \"{}\", expected one of point_to_point, point_to_plane, gicp", field, name));
 }
 
+std::string_view to_string(IcpCovariance model) {
+    for (const auto& [m, name] : kCovarianceNames) {
+        if (m == model) return name;
+    }
+    return "unknown";
+}
+
+IcpCovariance icp_covariance_from_string(std::string_view name, std::string_view field) {
+    for (const auto& [m, n] : kCovarianceNames) {
+        if (n == name) return m;
+    }
+    throw ConfigError(
+        fmt::format("{} = \"{}\", expected one of hessian, clustered_sandwich", field, name));
+}
+
 void IcpConfig::validate(std::string_view prefix) const {
     require_at_least(max_iterations, 1, prefix, "max_iterations");
     require_positive(max_correspondence_distance_m, prefix, "max_correspondence_distance_m");
@@ -122,6 +146,11 @@ void IcpConfig::validate(std::string_view prefix) const {
     require_at_least(min_correspondences, 6, prefix, "min_correspondences");
     require_at_least(num_neighbors, 3, prefix, "num_neighbors");
     require_open_unit(degeneracy_threshold, prefix, "degeneracy_threshold");
+    require_positive(covariance_cell_size_m, prefix, "covariance_cell_size_m");
+    if (!(map_error_sigma_m >= 0.0) || !std::isfinite(map_error_sigma_m)) {
+        throw ConfigError(fmt::format("{}.map_error_sigma_m = {}, expected finite >= 0", prefix,
+                                      map_error_sigma_m));
+    }
     parallel.validate(fmt::format("{}.parallel", prefix));
 }
 
@@ -137,7 +166,7 @@ RegistrationResult align(const PointCloud& source, const PointCloud& target,
                          const KdTree& target_tree, const Eigen::Isometry3d& T_target_source_init,
                          const IcpConfig& config) {
     config.validate();
-    check_inputs(source, target, target_tree, T_target_source_init);
+    check_inputs(source, target, target_tree, T_target_source_init, config);
     Prepared prepared;
     const detail::Problem problem = make_problem(source, target, target_tree, config, prepared);
     const detail::IterationSettings settings{
@@ -147,6 +176,9 @@ RegistrationResult align(const PointCloud& source, const PointCloud& target,
         .min_correspondences = config.min_correspondences,
         .degeneracy_threshold = config.degeneracy_threshold,
         .basis = Matrix6d::Identity(),
+        .covariance = {.model = config.covariance,
+                       .cell_size_m = config.covariance_cell_size_m,
+                       .map_error_sigma_m = config.map_error_sigma_m},
         .cap_violation = {}};
     return detail::iterate(problem, source.size(), T_target_source_init, settings);
 }

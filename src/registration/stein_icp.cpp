@@ -66,6 +66,7 @@ std::vector<Vector6d> icp_seeds(const PointCloud& source, const PointCloud& targ
     icp.method = target.has_normals() ? IcpMethod::kPointToPlane : IcpMethod::kPointToPoint;
     icp.max_iterations = config.seed_icp_iterations;
     icp.max_correspondence_distance_m = config.max_correspondence_distance_m;
+    icp.covariance = IcpCovariance::kHessian;  // only the pose is used: skip the scores
     icp.parallel = config.parallel;
     std::vector<Vector6d> seeds;
     for (int s = 0; s < config.num_yaw_seeds; ++s) {

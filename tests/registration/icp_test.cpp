@@ -249,6 +249,9 @@ TEST(IcpTest, EmptyOrNonFiniteInputThrowsInputError) {
     EXPECT_THROW(align(scene().source, scene().target, nan_pose, c), InputError);
     const KdTree wrong_tree(scene().source.points);
     EXPECT_THROW(align(scene().source, scene().target, wrong_tree, I, c), InputError);
+    IcpConfig back_faces = c;  // needs target normals to tell the faces apart
+    back_faces.reject_back_faces = true;
+    EXPECT_THROW(align(scene().source, scene().target, I, back_faces), InputError);
 }
 
 TEST(IcpTest, BadConfigThrowsConfigErrorNamingTheField) {
@@ -268,6 +271,9 @@ TEST(IcpTest, BadConfigThrowsConfigErrorNamingTheField) {
     c = IcpConfig{};
     c.degeneracy_threshold = 1.0;
     EXPECT_THROW(c.validate(), ConfigError);
+    c = IcpConfig{};
+    c.covariance_cell_size_m = 0.0;
+    EXPECT_THROW(c.validate(), ConfigError);
 }
 
 TEST(IcpTest, MethodNamesRoundTrip) {
@@ -276,6 +282,10 @@ TEST(IcpTest, MethodNamesRoundTrip) {
         EXPECT_EQ(icp_method_from_string(to_string(m)), m);
     }
     EXPECT_THROW(icp_method_from_string("ndt"), ConfigError);
+    for (IcpCovariance m : {IcpCovariance::kHessian, IcpCovariance::kClusteredSandwich}) {
+        EXPECT_EQ(icp_covariance_from_string(to_string(m)), m);
+    }
+    EXPECT_THROW(icp_covariance_from_string("censi"), ConfigError);
 }
 
 }  // namespace

@@ -1,6 +1,8 @@
 #include "scenes.hpp"
 
 #include <array>
+#include <cmath>
+#include <utility>
 #include <vector>
 
 #include <scantling/core/random.hpp>
@@ -62,6 +64,40 @@ PointCloud sample_rects(const std::vector<Rect>& rects, std::size_t n, Rng& rng,
 PointCloud sample_room_corner(std::size_t n, std::uint64_t seed, double noise_sigma_m) {
     Rng rng(seed);
     return sample_rects(room_corner(), n, rng, noise_sigma_m);
+}
+
+PointCloud sample_plated_room_corner(std::size_t n, std::uint64_t seed, double thickness_m,
+                                     bool hidden_faces) {
+    const Eigen::Vector3d o(-3.0, -2.0, -1.5);
+    const Eigen::Vector3d ex(6, 0, 0), ey(0, 4, 0), ez(0, 0, 3);
+    // (face, normal into the room): floor, wall x = −3, wall y = −2.
+    const std::array<std::pair<Rect, Eigen::Vector3d>, 3> plates = {{
+        {{o, ex, ey}, Eigen::Vector3d::UnitZ()},
+        {{o, ey, ez}, Eigen::Vector3d::UnitX()},
+        {{o, ex, ez}, Eigen::Vector3d::UnitY()},
+    }};
+    std::vector<Rect> rects;
+    std::vector<Eigen::Vector3d> normals;
+    for (const auto& [rect, normal] : plates) {
+        rects.push_back(rect);
+        normals.push_back(normal);
+        if (!hidden_faces) continue;
+        rects.push_back({rect.origin - thickness_m * normal, rect.u, rect.v});
+        normals.push_back(-normal);
+    }
+    Rng rng(seed);
+    PointCloud cloud = sample_rects(rects, n, rng, 0.0);
+    // sample_rects does not say which rectangle a point came from: find it by its offset.
+    for (const Eigen::Vector3d& p : cloud.points) {
+        std::size_t best = 0;
+        for (std::size_t k = 1; k < rects.size(); ++k) {
+            if (std::abs(normals[k].dot(p - rects[k].origin)) <
+                std::abs(normals[best].dot(p - rects[best].origin)))
+                best = k;
+        }
+        cloud.normals.push_back(normals[best]);
+    }
+    return cloud;
 }
 
 PointCloud sample_plane(std::size_t n, std::uint64_t seed, double half_size_m) {

@@ -14,6 +14,14 @@ namespace scantling::registration::test {
 /// Gaussian noise of `noise_sigma_m` per coordinate.
 PointCloud sample_room_corner(std::size_t n, std::uint64_t seed, double noise_sigma_m);
 
+/// The floor and the two walls of sample_room_corner (no boxes) as a CAD map models them: plates
+/// of `thickness_m` whose room-side faces lie where sample_room_corner's surfaces are. With
+/// `hidden_faces`, the outer faces too (a map sampled over the whole mesh); without, only the
+/// faces a sensor inside the room sees. Normals point out of the plates (into the room on the
+/// visible faces). Without noise.
+PointCloud sample_plated_room_corner(std::size_t n, std::uint64_t seed, double thickness_m,
+                                     bool hidden_faces);
+
 /// The square z = 0, |x|, |y| <= half_size_m, without noise: constrains z, roll and pitch only.
 PointCloud sample_plane(std::size_t n, std::uint64_t seed, double half_size_m);
 

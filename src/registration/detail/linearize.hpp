@@ -5,7 +5,9 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <array>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include <scantling/core/kdtree.hpp>
@@ -14,6 +16,25 @@
 #include <scantling/registration/icp.hpp>
 
 namespace scantling::registration::detail {
+
+/// Columns span the free directions of the twist (rho, omega): identity for full 6-DoF ICP.
+using DofBasis = Eigen::Matrix<double, 6, Eigen::Dynamic>;
+
+/// One source point's score g = w Jᵀ Ω r (its term of b), its sensitivity A = w Jᵀ Ω (how g
+/// moves when the target point moves: g changes by −A δ for a shift δ; point-to-plane: the
+/// first column only, δ along the normal) and the cell of its point q.
+struct CellScore {
+    std::array<std::int64_t, 3> cell{};
+    Vector6d score = Vector6d::Zero();
+    Eigen::Matrix<double, 6, 3> sensitivity = Eigen::Matrix<double, 6, 3>::Zero();
+    bool valid = false;  ///< false: the point had no correspondence
+};
+
+/// Scores requested from linearize, for IcpCovariance::kClusteredSandwich.
+struct ScoreRecord {
+    double cell_size_m = 1.0;       ///< cell edge, metres
+    std::vector<CellScore> scores;  ///< one per source point, in source order (filled)
+};
 
 /// Everything one linearisation gives: the normal equations and the figures the result needs.
 struct LinearSystem {
@@ -40,9 +61,13 @@ struct Problem {
     RobustKernel kernel = RobustKernel::kNone;
     double kernel_scale_m = 1.0;
     ParallelConfig parallel;
+    /// Outward target normals for IcpConfig::reject_back_faces; nullptr = keep every pair.
+    const std::vector<Eigen::Vector3d>* front_normals = nullptr;
 };
 
-/// Linearises the cost at `T_target_source`. Bit-identical for any thread count.
-LinearSystem linearize(const Problem& problem, const Eigen::Isometry3d& T_target_source);
+/// Linearises the cost at `T_target_source`; with `record` also writes every source point's
+/// score and cell into it (resized to the source). Bit-identical for any thread count.
+LinearSystem linearize(const Problem& problem, const Eigen::Isometry3d& T_target_source,
+                       ScoreRecord* record = nullptr);
 
 }  // namespace scantling::registration::detail

@@ -5,7 +5,6 @@
 
 #include <fmt/format.h>
 #include <Eigen/Cholesky>
-#include <Eigen/LU>
 
 namespace scantling::registration::detail {
 namespace {
@@ -14,9 +13,6 @@ namespace {
 // using (the degeneracy threshold is 1e-2) yet large against rounding noise (~1e-16 relative)
 // along exact null directions, where b is zero up to that noise: the step there stays ~1e-8.
 constexpr double kRelativeDamping = 1e-8;
-// Floor of the residual variance factor s²: exact synthetic data would otherwise give an
-// infinite information matrix.
-constexpr double kMinVarianceFactor = 1e-10;
 // A radius below this (metres) means coincident correspondences: rotations are then scaled by 1 m.
 constexpr double kMinRadiusM = 1e-9;
 
@@ -42,39 +38,42 @@ std::string too_few_status(std::size_t count, int min_correspondences) {
 }
 
 void fill_statistics(RegistrationResult& result, const LinearSystem& system,
-                     std::size_t source_size, const DofBasis& basis, double degeneracy_threshold) {
+                     const ScoreRecord* record, std::size_t source_size,
+                     const IterationSettings& settings) {
     const std::size_t n = system.count;
     result.num_inliers = n;
     result.fitness =
         source_size == 0 ? 0.0 : static_cast<double>(n) / static_cast<double>(source_size);
     result.rmse_m = n == 0 ? 0.0 : std::sqrt(system.distance_sq_sum_m2 / static_cast<double>(n));
-    const double redundancy =
-        std::max(static_cast<double>(n) - static_cast<double>(basis.cols()), 1.0);
-    const double s2 = std::max(system.cost / redundancy, kMinVarianceFactor);
-    result.information = system.H / s2;
     const double count = std::max(static_cast<double>(n), 1.0);
     const Eigen::Vector3d centroid = system.q_sum / count;
     const double radius_sq = system.q_norm_sq_sum / count - centroid.squaredNorm();
     const double radius = std::max(std::sqrt(std::max(radius_sq, 0.0)), kMinRadiusM);
-    result.degeneracy = analyze_degeneracy(system.H, centroid, radius, degeneracy_threshold);
-    result.covariance.reset();
-    if (n == 0 || result.degeneracy.degenerate) return;
-    const Eigen::MatrixXd covariance_free = reduced(result.information, basis).inverse();
-    result.covariance = Matrix6d(basis * covariance_free * basis.transpose());
+    result.degeneracy =
+        analyze_degeneracy(system.H, centroid, radius, settings.degeneracy_threshold);
+    const Uncertainty u = estimate_uncertainty(system, settings.basis, settings.covariance, record,
+                                               result.degeneracy.degenerate);
+    result.information = u.information;
+    result.covariance = u.covariance;
 }
 
 // Each loop linearises once, at the pose the last step produced, so the final statistics come
-// from the returned pose without an extra pass.
+// from the returned pose without an extra pass; the linearisation known to be the last one
+// (small step or last iteration) also records the scores of the clustered covariance.
 RegistrationResult iterate(const Problem& problem, std::size_t source_size,
                            const Eigen::Isometry3d& T_init, const IterationSettings& settings) {
     const auto enough = [&](const LinearSystem& s) {
         return s.count >= static_cast<std::size_t>(settings.min_correspondences);
     };
+    ScoreRecord scores{.cell_size_m = settings.covariance.cell_size_m, .scores = {}};
+    ScoreRecord* record =
+        settings.covariance.model == IcpCovariance::kClusteredSandwich ? &scores : nullptr;
     RegistrationResult result;
     result.T_target_source = T_init;
     result.status = "max_iterations";
     const LinearSystem initial = linearize(problem, T_init);
     LinearSystem system = initial;
+    bool scored = false;  // `record` belongs to `system`
     while (enough(system) && result.iterations < settings.max_iterations) {
         const Vector6d delta = solve_step(system, settings.basis);
         const Eigen::Isometry3d T = se3_exp(delta) * result.T_target_source;
@@ -83,14 +82,17 @@ RegistrationResult iterate(const Problem& problem, std::size_t source_size,
         if (!cap.empty()) {
             result.T_target_source = T_init;
             result.status = "cap_hit: " + cap;
-            fill_statistics(result, initial, source_size, settings.basis,
-                            settings.degeneracy_threshold);
+            if (record) linearize(problem, T_init, record);
+            fill_statistics(result, initial, record, source_size, settings);
             return result;
         }
         result.T_target_source = T;
-        system = linearize(problem, T);
-        if (is_small_step(delta, settings.translation_tolerance_m,
-                          settings.rotation_tolerance_rad)) {
+        const bool small =
+            is_small_step(delta, settings.translation_tolerance_m, settings.rotation_tolerance_rad);
+        const bool last = small || result.iterations == settings.max_iterations;
+        system = linearize(problem, T, last ? record : nullptr);
+        scored = last;
+        if (small) {
             result.converged = true;
             result.status = "converged";
             break;
@@ -100,7 +102,8 @@ RegistrationResult iterate(const Problem& problem, std::size_t source_size,
         result.converged = false;
         result.status = too_few_status(system.count, settings.min_correspondences);
     }
-    fill_statistics(result, system, source_size, settings.basis, settings.degeneracy_threshold);
+    if (record && !scored) system = linearize(problem, result.T_target_source, record);
+    fill_statistics(result, system, record, source_size, settings);
     return result;
 }
 

@@ -9,12 +9,10 @@
 
 #include <scantling/registration/result.hpp>
 
+#include "icp_covariance.hpp"
 #include "linearize.hpp"
 
 namespace scantling::registration::detail {
-
-/// Columns span the free directions of the twist (rho, omega): identity for full 6-DoF ICP.
-using DofBasis = Eigen::Matrix<double, 6, Eigen::Dynamic>;
 
 /// The Gauss-Newton step delta = −B (Bᵀ H B)⁻¹ Bᵀ b, slightly damped so that directions
 /// without any constraint (H has exact zeros there, and so has b) get a zero step instead of
@@ -27,11 +25,6 @@ bool is_small_step(const Vector6d& delta, double translation_m, double rotation_
 /// "too_few_correspondences: 3 < min_correspondences = 10".
 std::string too_few_status(std::size_t count, int min_correspondences);
 
-/// Fills num_inliers, fitness, rmse_m, information, covariance and degeneracy from the system
-/// linearised at the final estimate.
-void fill_statistics(RegistrationResult& result, const LinearSystem& system,
-                     std::size_t source_size, const DofBasis& basis, double degeneracy_threshold);
-
 struct IterationSettings {
     int max_iterations = 30;
     double translation_tolerance_m = 1e-3;
@@ -39,10 +32,17 @@ struct IterationSettings {
     int min_correspondences = 10;
     double degeneracy_threshold = 1e-2;
     DofBasis basis = Matrix6d::Identity();
+    CovarianceSettings covariance;  ///< model of the result's covariance (Hessian by default)
     /// Called with each new estimate (may be empty). A non-empty answer stops the iteration:
     /// the initial pose is returned, converged = false, status = "cap_hit: <answer>".
     std::function<std::string(const Eigen::Isometry3d&)> cap_violation;
 };
+
+/// Fills num_inliers, fitness, rmse_m, information, covariance and degeneracy from the system
+/// linearised at the final estimate; `record` holds its scores (kClusteredSandwich only).
+void fill_statistics(RegistrationResult& result, const LinearSystem& system,
+                     const ScoreRecord* record, std::size_t source_size,
+                     const IterationSettings& settings);
 
 /// Gauss-Newton iterations from `T_init`: linearise, step, until a small step, too few
 /// correspondences, max_iterations or a cap. Statistics describe the returned pose.
