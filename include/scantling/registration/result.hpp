@@ -43,11 +43,14 @@ struct RegistrationResult {
     std::size_t num_inliers = 0;  ///< source points with a correspondence at the final pose
     double fitness = 0.0;         ///< num_inliers / source size, in [0, 1]
     double rmse_m = 0.0;          ///< RMS of the inliers' residual distances, metres
-    /// Hessian of the final cost divided by the residual variance factor s² (see icp.hpp), in
-    /// the target frame, (rho, omega) order: the inverse covariance when it is invertible.
+    /// Inverse covariance in the target frame, (rho, omega) order: for ICP the inverse of
+    /// `covariance` (in the free directions) when there is one, otherwise the Hessian of the final
+    /// cost scaled by the residual variance (and, for the clustered model, its design effect; see
+    /// icp.hpp), which still shows the weak directions.
     Matrix6d information = Matrix6d::Zero();
-    /// `information⁻¹` when the problem is well conditioned (not degenerate); empty otherwise,
-    /// because an unconstrained direction has no finite variance.
+    /// The pose's covariance when the problem is well conditioned (not degenerate); empty
+    /// otherwise, because an unconstrained direction has no finite variance, and for ICP's
+    /// clustered model also when the scan spans too few cells (icp.hpp).
     std::optional<Matrix6d> covariance;
     DegeneracyReport degeneracy;  ///< from the final Hessian
     /// Why it stopped: "converged", "max_iterations", "too_few_correspondences: ...",
