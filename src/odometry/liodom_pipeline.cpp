@@ -51,6 +51,7 @@ std::optional<Eigen::Isometry3d> bootstrap_motion(Bootstrap& boot, const PointCl
     registration::IcpConfig icp;
     icp.method = registration::IcpMethod::kGeneralized;
     icp.max_correspondence_distance_m = 1.0;
+    icp.covariance = registration::IcpCovariance::kHessian;  // only the pose is used
     icp.parallel = config.parallel;
     const auto result = registration::align(down, boot.first, Eigen::Isometry3d::Identity(), icp);
     boot.first = PointCloud{};

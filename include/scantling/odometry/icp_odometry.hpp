@@ -25,6 +25,8 @@ struct IcpOdometryConfig {
         c.max_correspondence_distance_m = 1.0;
         c.translation_tolerance_m = 1e-4;
         c.rotation_tolerance_rad = 1e-5;
+        // The chained poses carry no covariance: skip the clustered model's extra pass.
+        c.covariance = registration::IcpCovariance::kHessian;
         return c;
     }();
     double max_time_gap_s = 0.5;
