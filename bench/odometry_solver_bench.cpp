@@ -76,38 +76,6 @@ std::optional<SolverInput> make_input() {
 
 // ---- the Ceres equivalent -------------------------------------------------------------------
 
-struct Line {
-    Eigen::Vector3d centroid;
-    Eigen::Vector3d direction;
-    bool valid = false;
-};
-
-/// The same line test as edge_registration.cpp's fit_line.
-Line fit_line(const odometry::LocalMap& map, const Eigen::Vector3d& query,
-              const odometry::EdgeRegistrationConfig& config, std::vector<Eigen::Vector3d>& points,
-              std::vector<double>& distances) {
-    Line line;
-    const auto k = static_cast<std::size_t>(config.num_neighbors);
-    if (map.knn(query, k, points, distances) < k) return line;
-    if (distances.back() > config.max_neighbor_distance_m * config.max_neighbor_distance_m) {
-        return line;
-    }
-    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-    for (const auto& p : points) mean += p;
-    mean /= static_cast<double>(k);
-    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-    for (const auto& p : points) cov += (p - mean) * (p - mean).transpose();
-    cov /= static_cast<double>(k);
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
-    eig.computeDirect(cov);
-    const Eigen::Vector3d& lambda = eig.eigenvalues();
-    if (!(lambda(2) > 0.0) || lambda(2) < config.line_eigen_ratio * lambda(1)) return line;
-    line.centroid = mean;
-    line.direction = eig.eigenvectors().col(2).normalized();
-    line.valid = true;
-    return line;
-}
-
 /// ω (I − uuᵀ)(R p + t − c): its norm is ω times the point-to-line distance.
 struct PointToLineCost {
     Eigen::Vector3d p;
@@ -171,10 +139,10 @@ CeresResult register_edges_ceres(const odometry::EdgeFeatures& edges, const odom
                                  double max_range_m,
                                  const odometry::EdgeRegistrationConfig& config) {
     const std::size_t n = edges.size();
-    std::vector<double> weights(n, 1.0);
-    for (std::size_t i = 0; i < n && config.range_weighting; ++i) {
-        const double r = edges.ranges_m[i];
-        weights[i] = std::clamp(1.0 - (r - min_range_m) / (max_range_m - min_range_m), 0.0, 1.0);
+    std::vector<double> weights(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        weights[i] = odometry::edge_range_weight(edges.ranges_m[i], min_range_m, max_range_m,
+                                                 config.range_weighting);
     }
     Eigen::Quaterniond q(T_init.linear());
     Eigen::Vector3d t = T_init.translation();
@@ -193,14 +161,15 @@ CeresResult register_edges_ceres(const odometry::EdgeFeatures& edges, const odom
     ceres::EigenQuaternionManifold quaternion_manifold;
 
     CeresResult result;
-    std::vector<Line> lines(n);
+    std::vector<odometry::EdgeLine> lines(n);
     for (int outer = 0; outer < config.max_iterations; ++outer) {
         const Eigen::Isometry3d T = Eigen::Translation3d(t) * q;
         parallel_for(config.parallel, n, 256, [&](std::size_t begin, std::size_t end) {
             std::vector<Eigen::Vector3d> points;
             std::vector<double> distances;
             for (std::size_t i = begin; i < end; ++i) {
-                lines[i] = fit_line(map, T * edges.points[i], config, points, distances);
+                lines[i] =
+                    odometry::fit_edge_line(map, T * edges.points[i], config, points, distances);
             }
         });
         ceres::Problem problem(problem_options);

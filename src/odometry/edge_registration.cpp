@@ -17,45 +17,6 @@ void require(bool ok, const std::string& prefix, const char* field, double value
     }
 }
 
-/// A line of the local map: a point on it and its unit direction.
-struct Line {
-    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-    Eigen::Vector3d direction = Eigen::Vector3d::UnitX();
-    bool valid = false;
-};
-
-/// The k neighbours of `query` as a line, or invalid (too few, too far, not line-like).
-Line fit_line(const LocalMap& map, const Eigen::Vector3d& query,
-              const EdgeRegistrationConfig& config, std::vector<Eigen::Vector3d>& points,
-              std::vector<double>& distances) {
-    Line line;
-    const auto k = static_cast<std::size_t>(config.num_neighbors);
-    if (map.knn(query, k, points, distances) < k) return line;
-    if (distances.back() > config.max_neighbor_distance_m * config.max_neighbor_distance_m) {
-        return line;
-    }
-    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-    for (const auto& p : points) mean += p;
-    mean /= static_cast<double>(k);
-    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-    for (const auto& p : points) cov += (p - mean) * (p - mean).transpose();
-    cov /= static_cast<double>(k);
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
-    eig.computeDirect(cov);
-    const Eigen::Vector3d& lambda = eig.eigenvalues();  // ascending
-    if (!(lambda(2) > 0.0) || lambda(2) < config.line_eigen_ratio * lambda(1)) return line;
-    line.centroid = mean;
-    line.direction = eig.eigenvectors().col(2).normalized();
-    line.valid = true;
-    return line;
-}
-
-double range_weight(double range_m, double min_range_m, double max_range_m, bool enabled) {
-    if (!enabled || !(max_range_m > min_range_m)) return 1.0;
-    const double w = 1.0 - (range_m - min_range_m) / (max_range_m - min_range_m);
-    return std::clamp(w, 0.0, 1.0);
-}
-
 struct NormalEquations {
     Matrix6d H = Matrix6d::Zero();
     Vector6d g = Vector6d::Zero();
@@ -63,7 +24,7 @@ struct NormalEquations {
     double sum_sq_distance = 0.0;
 };
 
-NormalEquations linearize(const EdgeFeatures& edges, const std::vector<Line>& lines,
+NormalEquations linearize(const EdgeFeatures& edges, const std::vector<EdgeLine>& lines,
                           const std::vector<double>& weights, const Eigen::Isometry3d& T,
                           double huber_delta_m) {
     NormalEquations ne;
@@ -91,6 +52,37 @@ NormalEquations linearize(const EdgeFeatures& edges, const std::vector<Line>& li
 }
 
 }  // namespace
+
+EdgeLine fit_edge_line(const LocalMap& map, const Eigen::Vector3d& query,
+                       const EdgeRegistrationConfig& config, std::vector<Eigen::Vector3d>& points,
+                       std::vector<double>& distances) {
+    EdgeLine line;
+    const auto k = static_cast<std::size_t>(config.num_neighbors);
+    if (map.knn(query, k, points, distances) < k) return line;
+    if (distances.back() > config.max_neighbor_distance_m * config.max_neighbor_distance_m) {
+        return line;
+    }
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    for (const auto& p : points) mean += p;
+    mean /= static_cast<double>(k);
+    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+    for (const auto& p : points) cov += (p - mean) * (p - mean).transpose();
+    cov /= static_cast<double>(k);
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+    eig.computeDirect(cov);
+    const Eigen::Vector3d& lambda = eig.eigenvalues();  // ascending
+    if (!(lambda(2) > 0.0) || lambda(2) < config.line_eigen_ratio * lambda(1)) return line;
+    line.centroid = mean;
+    line.direction = eig.eigenvectors().col(2).normalized();
+    line.valid = true;
+    return line;
+}
+
+double edge_range_weight(double range_m, double min_range_m, double max_range_m, bool enabled) {
+    if (!enabled || !(max_range_m > min_range_m)) return 1.0;
+    const double w = 1.0 - (range_m - min_range_m) / (max_range_m - min_range_m);
+    return std::clamp(w, 0.0, 1.0);
+}
 
 void EdgeRegistrationConfig::validate(std::string_view prefix) const {
     const std::string p(prefix);
@@ -126,7 +118,7 @@ EdgeRegistrationResult register_edges(const EdgeFeatures& edges, const LocalMap&
     double mean_range = 0.0;
     for (std::size_t i = 0; i < n; ++i) {
         const double r = i < edges.ranges_m.size() ? edges.ranges_m[i] : edges.points[i].norm();
-        weights[i] = range_weight(r, min_range_m, max_range_m, config.range_weighting);
+        weights[i] = edge_range_weight(r, min_range_m, max_range_m, config.range_weighting);
         mean_range += r;
     }
     mean_range = std::max(mean_range / static_cast<double>(n), 1e-3);
@@ -136,14 +128,14 @@ EdgeRegistrationResult register_edges(const EdgeFeatures& edges, const LocalMap&
     const Matrix6d D = scale.asDiagonal();
 
     Eigen::Isometry3d T = T_init;
-    std::vector<Line> lines(n);
+    std::vector<EdgeLine> lines(n);
     NormalEquations ne;
     for (int outer = 0; outer < config.max_iterations; ++outer) {
         parallel_for(config.parallel, n, 256, [&](std::size_t begin, std::size_t end) {
             std::vector<Eigen::Vector3d> points;
             std::vector<double> distances;
             for (std::size_t i = begin; i < end; ++i) {
-                lines[i] = fit_line(map, T * edges.points[i], config, points, distances);
+                lines[i] = fit_edge_line(map, T * edges.points[i], config, points, distances);
             }
         });
         bool converged = false;

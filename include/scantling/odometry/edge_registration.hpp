@@ -23,6 +23,7 @@
 #include <Eigen/Geometry>
 #include <cstddef>
 #include <string_view>
+#include <vector>
 
 #include <scantling/core/parallel.hpp>
 #include <scantling/core/se3.hpp>
@@ -70,6 +71,23 @@ struct EdgeRegistrationResult {
     /// Unit directions (columns, (ρ, ω) order, scaled frame) that were degenerate.
     Eigen::Matrix<double, 6, Eigen::Dynamic> degenerate_directions;
 };
+
+/// A line of the local map: its neighbours' centroid and unit direction.
+struct EdgeLine {
+    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+    Eigen::Vector3d direction = Eigen::Vector3d::UnitX();
+    bool valid = false;  ///< false: too few or too far neighbours, or not line-like
+};
+
+/// The `num_neighbors` nearest map points of `query` (world frame) as a line: all within
+/// `max_neighbor_distance_m` and with λ1 ≥ `line_eigen_ratio` · λ2. `points` and `distances` are
+/// the caller's scratch buffers (the hot path reuses them).
+EdgeLine fit_edge_line(const LocalMap& map, const Eigen::Vector3d& query,
+                       const EdgeRegistrationConfig& config, std::vector<Eigen::Vector3d>& points,
+                       std::vector<double>& distances);
+
+/// ω = 1 − (r − r_min)/(r_max − r_min), clamped to [0, 1] (1 when `enabled` is false).
+double edge_range_weight(double range_m, double min_range_m, double max_range_m, bool enabled);
 
 /// Registers `edges` (sensor frame, with ranges) to `map` from `T_init` (world ← sensor).
 /// Never throws on data: too few correspondences give registered = false and T_init back.
