@@ -48,17 +48,21 @@ struct IcpVariant {
     const char* label;
     registration::IcpCovariance covariance;
     double map_error_sigma_m;
-    bool reject_back_faces;
+    registration::BackFaces back_faces;
 };
 
 constexpr auto kHessian = registration::IcpCovariance::kHessian;
 constexpr auto kClustered = registration::IcpCovariance::kClusteredSandwich;
+constexpr auto kKeep = registration::BackFaces::kKeep;
+constexpr auto kReject = registration::BackFaces::kReject;
+constexpr auto kPreferFront = registration::BackFaces::kPreferFront;
 constexpr IcpVariant kIcpVariants[] = {
-    {"ICP Hessian (before)", kHessian, 0.0, false},
-    {"ICP clustered", kClustered, 0.001, false},
-    {"ICP Hessian, back faces out", kHessian, 0.0, true},
-    {"ICP clustered σ_m = 0, back faces out", kClustered, 0.0, true},
-    {"ICP clustered, back faces out (after)", kClustered, 0.001, true},
+    {"ICP Hessian, back faces kept", kHessian, 0.0, kKeep},
+    {"ICP clustered, back faces kept", kClustered, 0.001, kKeep},
+    {"ICP Hessian, back faces out", kHessian, 0.0, kReject},
+    {"ICP clustered σ_m = 0, back faces out", kClustered, 0.0, kReject},
+    {"ICP clustered, back faces out", kClustered, 0.001, kReject},
+    {"ICP clustered, front faces preferred (default)", kClustered, 0.001, kPreferFront},
 };
 
 registration::IcpConfig icp_config(const IcpVariant& v) {
@@ -67,7 +71,7 @@ registration::IcpConfig icp_config(const IcpVariant& v) {
     c.max_iterations = 50;
     c.covariance = v.covariance;
     c.map_error_sigma_m = v.map_error_sigma_m;
-    c.reject_back_faces = v.reject_back_faces;
+    c.back_faces = v.back_faces;
     c.parallel.num_threads = 1;
     return c;
 }

@@ -72,6 +72,7 @@ void check_options(const RegisterOptions& o, Method method) {
         throw ConfigError(fmt::format("--max-distance = {}, expected > 0 m", *o.max_distance_m));
     if (o.num_threads < 0)
         throw ConfigError(fmt::format("--threads = {}, expected >= 0", o.num_threads));
+    reg::back_faces_from_string(o.back_faces, "--back-faces");
     if (is_global(method) && o.init_path)
         throw ConfigError(
             "--init applies to icp, p2plane, gicp and stein (global methods need no guess)");
@@ -110,6 +111,7 @@ Outcome run_icp(const PointCloud& src, const PointCloud& tgt, const Eigen::Isome
                 reg::IcpMethod method, const RegisterOptions& o) {
     reg::IcpConfig config;
     config.method = method;
+    config.back_faces = reg::back_faces_from_string(o.back_faces, "--back-faces");
     if (o.max_distance_m) config.max_correspondence_distance_m = *o.max_distance_m;
     config.parallel.num_threads = o.num_threads;
     return from_registration(reg::align(src, tgt, init, config));
@@ -136,6 +138,7 @@ reg::IcpConfig refine_config(double voxel_m, const RegisterOptions& o) {
     reg::IcpConfig icp;
     icp.method = reg::IcpMethod::kPointToPlane;
     icp.max_correspondence_distance_m = o.max_distance_m.value_or(2.0 * voxel_m);
+    icp.back_faces = reg::back_faces_from_string(o.back_faces, "--back-faces");
     icp.parallel.num_threads = o.num_threads;
     return icp;
 }

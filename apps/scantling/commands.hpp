@@ -45,6 +45,9 @@ struct RegisterOptions {
     /// Correspondence distance, metres, > 0. Unset: the method's default (ICP 1 m, Stein 0.5 m,
     /// the refinement after a global method 2 voxels).
     std::optional<double> max_distance_m;
+    /// ICP (local methods and the refinement): keep, prefer_front or reject the target points
+    /// facing away from the sensor (IcpConfig::back_faces; the target file's normals).
+    std::string back_faces = "prefer_front";
     std::string out;      ///< where the 4×4 T_target_source is written (alone, atomically)
     int num_threads = 0;  ///< 0 = all hardware threads
 };

@@ -124,6 +124,11 @@ void define_register(CLI::App& app, CommandLine& cl) {
                         "Correspondence distance in metres (default: ICP 1, stein 0.5, "
                         "refinement after a global method 2 voxels)")
             ->type_name("M");
+    cmd->add_option("--back-faces", cl.reg.back_faces,
+                    "ICP pairs with target points facing away from the sensor, by the target "
+                    "file's normals: keep, prefer_front (default: the nearest front face among "
+                    "the 8 nearest) or reject")
+        ->type_name("MODE");
     cmd->add_option("--out", cl.reg.out, "Output: the 4x4 T_target_source alone")
         ->required()
         ->type_name("FILE");

@@ -30,6 +30,12 @@ constexpr std::array<std::pair<IcpCovariance, std::string_view>, 2> kCovarianceN
     {IcpCovariance::kClusteredSandwich, "clustered_sandwich"},
 }};
 
+constexpr std::array<std::pair<BackFaces, std::string_view>, 3> kBackFaceNames = {{
+    {BackFaces::kKeep, "keep"},
+    {BackFaces::kPreferFront, "prefer_front"},
+    {BackFaces::kReject, "reject"},
+}};
+
 /// Normals and covariances estimated here when the clouds lack them (owned for the call).
 struct Prepared {
     std::vector<Eigen::Vector3d> target_normals;
@@ -48,8 +54,8 @@ void check_inputs(const PointCloud& source, const PointCloud& target, const KdTr
     if (!T_init.matrix().allFinite()) {
         throw InputError("icp: T_target_source_init is not finite");
     }
-    if (config.reject_back_faces && !target.has_normals()) {
-        throw InputError("icp: reject_back_faces needs target normals pointing to the free side");
+    if (config.back_faces == BackFaces::kReject && !target.has_normals()) {
+        throw InputError("icp: back_faces = reject needs target normals pointing to the free side");
     }
 }
 
@@ -87,7 +93,10 @@ detail::Problem make_problem(const PointCloud& source, const PointCloud& target,
                       .kernel = config.kernel,
                       .kernel_scale_m = config.kernel_scale_m,
                       .parallel = config.parallel,
-                      .front_normals = config.reject_back_faces ? &target.normals : nullptr};
+                      .front_normals = config.back_faces != BackFaces::kKeep && target.has_normals()
+                                           ? &target.normals
+                                           : nullptr,
+                      .reject_back_faces = config.back_faces == BackFaces::kReject};
     if (config.method == IcpMethod::kPointToPlane) {
         if (!target.has_normals()) prepared.target_normals = target_normals(target, tree, config);
         p.target_normals = target.has_normals() ? &target.normals : &prepared.target_normals;
@@ -120,6 +129,21 @@ IcpMethod icp_method_from_string(std::string_view name, std::string_view field) 
     }
     throw ConfigError(fmt::format(
         "{} = \"{}\", expected one of point_to_point, point_to_plane, gicp", field, name));
+}
+
+std::string_view to_string(BackFaces mode) {
+    for (const auto& [m, name] : kBackFaceNames) {
+        if (m == mode) return name;
+    }
+    return "unknown";
+}
+
+BackFaces back_faces_from_string(std::string_view name, std::string_view field) {
+    for (const auto& [m, n] : kBackFaceNames) {
+        if (n == name) return m;
+    }
+    throw ConfigError(
+        fmt::format("{} = \"{}\", expected one of keep, prefer_front, reject", field, name));
 }
 
 std::string_view to_string(IcpCovariance model) {

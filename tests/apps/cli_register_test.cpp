@@ -197,6 +197,9 @@ TEST_F(CliRegister, BadInputFailsWithOneLineAndNoOutput) {
     expect_one_error_line(run_method("icp", "--voxel -0.1"), "--voxel");
     expect_one_error_line(run_method("fpfh-teaser", "--voxel 0"), "--voxel");
     expect_one_error_line(run_method("icp", "--max-distance 0"), "--max-distance");
+    expect_one_error_line(run_method("icp", "--back-faces sometimes"), "--back-faces");
+    // The pair's files carry no normals, so no face can be told apart.
+    expect_one_error_line(run_method("p2plane", "--back-faces reject"), "back_faces = reject");
     expect_one_error_line(
         run("register " + quoted(path("missing.pcd")) + " " + quoted(path("target.pcd")) +
             " --method icp --out " + quoted(path("T.txt"))),

@@ -250,7 +250,7 @@ TEST(IcpTest, EmptyOrNonFiniteInputThrowsInputError) {
     const KdTree wrong_tree(scene().source.points);
     EXPECT_THROW(align(scene().source, scene().target, wrong_tree, I, c), InputError);
     IcpConfig back_faces = c;  // needs target normals to tell the faces apart
-    back_faces.reject_back_faces = true;
+    back_faces.back_faces = BackFaces::kReject;
     EXPECT_THROW(align(scene().source, scene().target, I, back_faces), InputError);
 }
 

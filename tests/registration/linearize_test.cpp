@@ -168,6 +168,7 @@ TEST(LinearizeTest, BackFaceRejectionDropsExactlyThePairsFacingAwayFromTheSource
                       .parallel = {}};
     const detail::LinearSystem all = detail::linearize(p, Eigen::Isometry3d::Identity());
     p.front_normals = &target.normals;  // the source origin, the sensor, is the room's centre
+    p.reject_back_faces = true;
     const detail::LinearSystem front = detail::linearize(p, Eigen::Isometry3d::Identity());
     std::size_t facing = 0;
     for (const Eigen::Vector3d& q : source.points) {
@@ -181,6 +182,54 @@ TEST(LinearizeTest, BackFaceRejectionDropsExactlyThePairsFacingAwayFromTheSource
     constexpr double kThicknessSqM2 = 1e-4;  // each hidden-face pair: residual = 1 cm
     EXPECT_GT(all.cost, 0.99 * kThicknessSqM2 * static_cast<double>(source.size() - facing));
     EXPECT_LT(front.cost, 0.1 * all.cost);
+}
+
+TEST(LinearizeTest, PreferringFrontFacesKeepsEveryPairAndMostlyTheVisibleFace) {
+    const PointCloud target = test::sample_plated_room_corner(20000, 41, 0.01, true);
+    const PointCloud source = test::sample_plated_room_corner(2000, 42, 0.01, false);
+    const KdTree tree(target.points);
+    detail::Problem p{.source_points = &source.points,
+                      .target_tree = &tree,
+                      .target_normals = &target.normals,
+                      .method = IcpMethod::kPointToPlane,
+                      .max_correspondence_distance_m = 0.5,
+                      .parallel = {},
+                      .front_normals = &target.normals};
+    const detail::LinearSystem front = detail::linearize(p, Eigen::Isometry3d::Identity());
+    p.reject_back_faces = true;
+    const detail::LinearSystem rejected = detail::linearize(p, Eigen::Isometry3d::Identity());
+    EXPECT_EQ(front.count, source.size());  // no pair lost, unlike kReject
+    EXPECT_LT(rejected.count, source.size() * 9 / 10);
+    // The scan lies on the visible faces; each hidden-face pair adds (1 cm)².
+    p.front_normals = nullptr;
+    const detail::LinearSystem kept = detail::linearize(p, Eigen::Isometry3d::Identity());
+    // Measured: cost 0.011 against 0.103 with the nearest points kept (what remains: pairs whose
+    // 8 nearest hold no front face).
+    EXPECT_LT(front.cost, 0.2 * kept.cost);
+}
+
+TEST(LinearizeTest, PreferringFrontFacesKeepsTheNearestWhereNoNormalFacesTheSensor) {
+    // One face per plate, normals flipped: every target point faces away from the sensor (as
+    // when a map's normals were oriented towards another viewpoint).
+    PointCloud target = test::sample_plated_room_corner(20000, 43, 0.01, false);
+    for (Eigen::Vector3d& n : target.normals) n = -n;
+    const PointCloud source = test::sample_plated_room_corner(2000, 44, 0.01, false);
+    const KdTree tree(target.points);
+    detail::Problem p{.source_points = &source.points,
+                      .target_tree = &tree,
+                      .target_normals = &target.normals,
+                      .method = IcpMethod::kPointToPlane,
+                      .max_correspondence_distance_m = 0.5,
+                      .parallel = {}};
+    const detail::LinearSystem plain = detail::linearize(p, Eigen::Isometry3d::Identity());
+    p.front_normals = &target.normals;
+    const detail::LinearSystem preferred = detail::linearize(p, Eigen::Isometry3d::Identity());
+    p.reject_back_faces = true;
+    const detail::LinearSystem rejected = detail::linearize(p, Eigen::Isometry3d::Identity());
+    EXPECT_EQ(plain.count, source.size());
+    EXPECT_EQ(preferred.count, plain.count);
+    EXPECT_DOUBLE_EQ(preferred.cost, plain.cost);
+    EXPECT_EQ(rejected.count, 0u);
 }
 
 INSTANTIATE_TEST_SUITE_P(Methods, LinearizeTest,
@@ -285,13 +334,18 @@ TEST(IcpCovarianceTest, RejectingBackFacesRemovesTheBiasOfAMapWithBothPlateFaces
         transformed(test::sample_plated_room_corner(3000, 62, 0.01, false), T_true.inverse());
     IcpConfig c;
     c.max_correspondence_distance_m = 0.3;
+    c.back_faces = BackFaces::kKeep;
     const RegistrationResult both = align(scan, map, Eigen::Isometry3d::Identity(), c);
-    c.reject_back_faces = true;
+    c.back_faces = BackFaces::kReject;
     const RegistrationResult front = align(scan, map, Eigen::Isometry3d::Identity(), c);
+    c.back_faces = BackFaces::kPreferFront;  // the default
+    const RegistrationResult preferred = align(scan, map, Eigen::Isometry3d::Identity(), c);
     // Measured 8.3 mm (pulled towards the hidden faces 1 cm behind the walls) and 0.17 mm.
     EXPECT_GT(pose_error(both.T_target_source, T_true).translation_m, 0.003);
     EXPECT_LT(pose_error(front.T_target_source, T_true).translation_m, 0.001);
+    EXPECT_LT(pose_error(preferred.T_target_source, T_true).translation_m, 0.001);
     EXPECT_TRUE(front.converged) << front.status;
+    EXPECT_TRUE(preferred.converged) << preferred.status;
 }
 
 }  // namespace

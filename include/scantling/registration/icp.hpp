@@ -32,7 +32,7 @@
 ///   covariance. `information` is the covariance's inverse when there is one; otherwise H over s²
 ///   times the design effect tr(M) / (s² tr H), M the middle term (a scalar inflation that keeps
 ///   the weak directions visible).
-/// Neither model sees a bias shared by all surfaces: see `reject_back_faces` for the one CAD
+/// Neither model sees a bias shared by all surfaces: see `back_faces` for the one CAD
 /// maps cause. Point-to-point treats the matched points as fixed, so its Hessian cannot see
 /// sliding along a surface: its covariance and degeneracy report are optimistic. Use
 /// point-to-plane or GICP when the uncertainty matters. Exact data keep a finite covariance
@@ -71,6 +71,22 @@ enum class IcpCovariance {
     kHessian,            ///< s² H⁻¹: independent residuals assumed
     kClusteredSandwich,  ///< H⁻¹ (Σ_cells g_c g_cᵀ) H⁻¹: residuals correlated within a cell
 };
+
+/// What to do when a source point's nearest target point lies on a surface facing away from
+/// the sensor (see IcpConfig::back_faces). Uses the target's own normals only.
+enum class BackFaces {
+    kKeep,  ///< the nearest target point, whatever its normal
+    /// The nearest front-facing target point among the 8 nearest; the nearest when none faces
+    /// the sensor (normals not oriented for this viewpoint: the plain nearest neighbour).
+    kPreferFront,
+    kReject,  ///< drop the pair when the nearest target point faces away
+};
+
+/// "keep", "prefer_front", "reject".
+std::string_view to_string(BackFaces mode);
+
+/// Inverse of to_string; throws ConfigError naming `field` and listing the accepted names.
+BackFaces back_faces_from_string(std::string_view name, std::string_view field = "back_faces");
 
 /// "hessian", "clustered_sandwich".
 std::string_view to_string(IcpCovariance model);
@@ -121,15 +137,17 @@ struct IcpConfig {
     /// no residual shows). 1 mm: with it the NEES above, without it 33 and 9.9; 2 mm gave 1.9
     /// and 5.0. A real CAD map's as-built deviations are larger and belong here.
     double map_error_sigma_m = 0.001;
-    /// Drop pairs whose target point faces away from the source origin, i.e. n_t · (o − t) <= 0
-    /// with o the source frame's origin in the target frame (the sensor, for a scan given in
-    /// its sensor or body frame). For maps whose normals point to the free side, as a CAD
-    /// map's triangle normals do: a map sampled on both faces of 1 cm plates otherwise pairs
-    /// much of the scan with hidden faces and pulls the pose towards them (mock-up: 3.7 mm
-    /// along the view, median error 4.3 mm; 1.1 mm with the rejection).
-    /// Needs normals in `target` (InputError otherwise); for any method. Off by default:
-    /// normals estimated from a cloud are oriented towards that cloud's origin only.
-    bool reject_back_faces = false;
+    /// Target points whose normal faces away from the source origin o (the sensor, for a scan
+    /// given in its sensor or body frame): n_t · (o − t) <= 0, o in the target frame. A CAD
+    /// map's triangle normals point to the free side, and a map sampled on both faces of 1 cm
+    /// plates otherwise pairs much of the scan with hidden faces and pulls the pose towards
+    /// them (mock-up: 3.7 mm along the view, median error 4.3 mm, 1.1 mm without; no
+    /// covariance model is consistent with that bias, docs/results.md). kPreferFront (default)
+    /// fixes that and is harmless elsewhere: normals estimated from a cloud face that cloud's
+    /// sensor, and where none of the 8 nearest faces this sensor the nearest is kept. Only
+    /// normals present in `target` are used (without them every mode is kKeep), except that
+    /// kReject requires them. A kNN search runs only for points whose nearest faces away.
+    BackFaces back_faces = BackFaces::kPreferFront;
     ParallelConfig parallel;  ///< threads for the correspondence and accumulation pass
 
     /// Throws ConfigError("<prefix>.max_iterations = 0, expected >= 1").
@@ -143,7 +161,7 @@ struct IcpConfig {
 /// when the same cloud is registered repeatedly.
 /// Throws InputError for an empty, inconsistent or non-finite cloud, a non-finite initial pose,
 /// a target with fewer than 3 points when normals/covariances must be estimated, or a target
-/// without normals when `reject_back_faces` is set; ConfigError for a bad config. Too few
+/// without normals when `back_faces` is kReject; ConfigError for a bad config. Too few
 /// correspondences is a result (converged = false).
 RegistrationResult align(const PointCloud& source, const PointCloud& target,
                          const Eigen::Isometry3d& T_target_source_init, const IcpConfig& config);

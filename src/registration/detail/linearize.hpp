@@ -61,8 +61,11 @@ struct Problem {
     RobustKernel kernel = RobustKernel::kNone;
     double kernel_scale_m = 1.0;
     ParallelConfig parallel;
-    /// Outward target normals for IcpConfig::reject_back_faces; nullptr = keep every pair.
+    /// Outward target normals for IcpConfig::back_faces; nullptr = plain nearest neighbours.
     const std::vector<Eigen::Vector3d>* front_normals = nullptr;
+    /// With front_normals: drop a pair whose nearest target point faces away (kReject) rather
+    /// than take the nearest front-facing point among the next few (kPreferFront).
+    bool reject_back_faces = false;
 };
 
 /// Linearises the cost at `T_target_source`; with `record` also writes every source point's
