@@ -128,14 +128,14 @@ struct IcpConfig {
     /// residual errors are correlated, short enough for >= 3 cells per DoF in a scan. 1 m: on
     /// simulated tank scans at 0.05 m voxels (back faces rejected, σ_m = 1 mm, 100 trials each)
     /// the mean NEES was 4.6 (depth camera, ballast-tank mock-up) and 7.1 (360° LiDAR,
-    /// distillation column) for 6 expected; 0.5 m cells gave 8.2 and 12.5, 1.5 m too few cells
-    /// in a depth camera's view.
+    /// distillation column) for 6 expected, 4.7 and 4.7 with the default kPreferFront; 0.5 m
+    /// cells gave 8.2 and 12.5, 1.5 m too few cells in a depth camera's view.
     double covariance_cell_size_m = 1.0;
     /// σ_m of kClusteredSandwich, metres, >= 0 (0: the residual sandwich alone): how far the
     /// target surfaces of one cell may sit, together, from where the map puts them (the map's
     /// accuracy and both clouds' discretisation: at 0.05 m voxels a bias of ~1 mm remains that
-    /// no residual shows). 1 mm: with it the NEES above, without it 33 and 9.9; 2 mm gave 1.9
-    /// and 5.0. A real CAD map's as-built deviations are larger and belong here.
+    /// no residual shows). 1 mm: with it the NEES above, without it 33 and 9.9 (back faces
+    /// rejected); 2 mm gave 1.9 and 5.0. A real CAD map's as-built deviations are larger and belong here.
     double map_error_sigma_m = 0.001;
     /// Target points whose normal faces away from the source origin o (the sensor, for a scan
     /// given in its sensor or body frame): n_t · (o − t) <= 0, o in the target frame. A CAD
