@@ -135,7 +135,8 @@ struct IcpConfig {
     /// target surfaces of one cell may sit, together, from where the map puts them (the map's
     /// accuracy and both clouds' discretisation: at 0.05 m voxels a bias of ~1 mm remains that
     /// no residual shows). 1 mm: with it the NEES above, without it 33 and 9.9 (back faces
-    /// rejected); 2 mm gave 1.9 and 5.0. A real CAD map's as-built deviations are larger and belong here.
+    /// rejected); 2 mm gave 1.9 and 5.0. A real CAD map's as-built deviations are larger and belong
+    /// here.
     double map_error_sigma_m = 0.001;
     /// Target points whose normal faces away from the source origin o (the sensor, for a scan
     /// given in its sensor or body frame): n_t · (o − t) <= 0, o in the target frame. A CAD
