@@ -88,6 +88,8 @@ void global_ours(benchmark::State& state, const GlobalInputs* in, int threads) {
         successes += is_3dmatch_success(T, in->pair.T_target_source_ref) ? 1 : 0;
         ++runs;
         state.counters["correspondences"] = static_cast<double>(matches.size());
+        // Which verified candidate won (0 = the maximum clique's pose).
+        state.counters["winning_hypothesis"] = static_cast<double>(r.winning_hypothesis);
     }
     count_success(state, successes, runs, T, in->pair.T_target_source_ref);
 }

@@ -2,11 +2,15 @@
 #include <scantling/registration/robust_registration.hpp>
 
 #include <cmath>
+#include <numbers>
+#include <utility>
 
 #include <fmt/format.h>
 
 #include "detail/config_checks.hpp"
 #include "detail/consistency_graph.hpp"
+#include "detail/hypothesis_cliques.hpp"
+#include "detail/hypothesis_scoring.hpp"
 #include "detail/rigid_fit.hpp"
 #include "detail/tls_estimators.hpp"
 
@@ -147,6 +151,110 @@ void judge(std::span<const Eigen::Vector3d> source, const RobustRegistrationConf
     r.registration.status = "converged";
 }
 
+/// The pose of one clique (steps 3–5) and its correspondence inliers.
+struct Candidate {
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    std::vector<std::size_t> inliers;
+    int iterations = 0;
+    double overlap = 0.0;
+};
+
+Candidate solve_clique(std::span<const Eigen::Vector3d> source,
+                       std::span<const Eigen::Vector3d> target,
+                       const std::vector<std::uint32_t>& clique,
+                       const RobustRegistrationConfig& config) {
+    const bool yaw_only = config.rotation == RobustRotation::kYawOnly;
+    const double bound = config.noise_bound_m * std::sqrt(config.cbar2);
+    const RotationStep rotation = estimate_rotation(source, target, clique, config);
+    Candidate c;
+    c.iterations = rotation.iterations;
+    c.T.linear() = rotation.R;
+    c.T.translation() = estimate_translation(source, target, rotation.members, rotation.R, bound);
+    c.inliers = find_inliers(source, target, c.T, bound);
+    refit(source, target, yaw_only, bound, c.T, c.inliers);
+    return c;
+}
+
+/// Whether `a` and `b` are the same pose up to the noise: then the overlap difference between
+/// them is sampling chance, and the earlier (larger) clique's pose should stand.
+bool same_pose(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b, double bound) {
+    constexpr double kSameRotationRad = std::numbers::pi / 180.0;
+    const Eigen::Isometry3d d = a.inverse() * b;
+    return Eigen::AngleAxisd(d.linear()).angle() < kSameRotationRad &&
+           d.translation().norm() < bound;
+}
+
+/// Solves every clique and scores its pose (in parallel: each writes only its own slot), then
+/// returns the index of the best: most overlap, then most inliers, then the earliest clique. A
+/// candidate with the same pose as the best so far never replaces it.
+std::size_t verify(std::span<const Eigen::Vector3d> source, std::span<const Eigen::Vector3d> target,
+                   const std::vector<std::vector<std::uint32_t>>& cliques,
+                   const RobustRegistrationConfig& config, const detail::OverlapScorer& scorer,
+                   std::vector<Candidate>& candidates) {
+    candidates.resize(cliques.size());
+    parallel_for(config.parallel, cliques.size(), 1, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i) {
+            candidates[i] = solve_clique(source, target, cliques[i], config);
+            candidates[i].overlap = scorer.score(candidates[i].T);
+        }
+    });
+    const double bound = config.noise_bound_m * std::sqrt(config.cbar2);
+    std::size_t best = 0;
+    for (std::size_t i = 1; i < candidates.size(); ++i) {
+        const Candidate& c = candidates[i];
+        const Candidate& b = candidates[best];
+        const bool better = c.overlap > b.overlap ||
+                            (c.overlap == b.overlap && c.inliers.size() > b.inliers.size());
+        if (better && !same_pose(c.T, b.T, bound)) best = i;
+    }
+    return best;
+}
+
+/// The whole method on validated config; `scorer` (may be null: no verification) holds the
+/// clouds for the overlap score.
+RobustRegistrationResult register_pairs(std::span<const Eigen::Vector3d> source,
+                                        std::span<const Eigen::Vector3d> target,
+                                        const RobustRegistrationConfig& config,
+                                        const detail::OverlapScorer* scorer) {
+    check_pairs(source, target);
+    RobustRegistrationResult r;
+    if (source.size() < 3) {
+        r.registration.status = fmt::format("too_few_correspondences: {} < 3", source.size());
+        return r;
+    }
+    const bool yaw_only = config.rotation == RobustRotation::kYawOnly;
+    const double bound = config.noise_bound_m * std::sqrt(config.cbar2);
+    const UndirectedGraph graph =
+        detail::build_consistency_graph(source, target, 2.0 * bound, yaw_only, config.parallel);
+    r.num_consistent_pairs = graph.num_edges();
+    MaxCliqueResult clique = find_max_clique(graph, config.max_clique);
+    r.max_clique_size = clique.vertices.size();
+    r.max_clique_method = clique.method;
+    if (clique.vertices.size() < 3) {
+        r.registration.status = fmt::format("clique_too_small: {} < 3", clique.vertices.size());
+        return r;
+    }
+    Candidate best;
+    if (scorer == nullptr) {
+        best = solve_clique(source, target, clique.vertices, config);
+    } else {
+        const auto cliques =
+            detail::disjoint_cliques(graph, std::move(clique.vertices),
+                                     static_cast<std::size_t>(config.hypotheses.num_hypotheses), 3);
+        std::vector<Candidate> candidates;
+        r.winning_hypothesis = verify(source, target, cliques, config, *scorer, candidates);
+        r.num_hypotheses_scored = candidates.size();
+        best = std::move(candidates[r.winning_hypothesis]);
+        r.overlap = best.overlap;
+    }
+    r.registration.iterations = best.iterations;
+    r.registration.T_target_source = best.T;
+    r.inliers = std::move(best.inliers);
+    fill_statistics(source, target, r);
+    judge(source, config, r);
+    return r;
+}
+
 }  // namespace
 
 void RobustRegistrationConfig::validate(std::string_view prefix) const {
@@ -169,42 +277,23 @@ void RobustRegistrationConfig::validate(std::string_view prefix) const {
         throw ConfigError(fmt::format("{}.min_spread_in_noise_bounds = {}, expected finite >= 0",
                                       prefix, min_spread_in_noise_bounds));
     }
+    hypotheses.validate(fmt::format("{}.hypotheses", prefix));
     parallel.validate(fmt::format("{}.parallel", prefix));
+}
+
+void HypothesisConfig::validate(std::string_view prefix) const {
+    detail::require_at_least(num_hypotheses, 1, prefix, "num_hypotheses");
+    detail::require_positive(overlap_distance_m, prefix, "overlap_distance_m");
+    if (max_scored_points < 1) {
+        throw ConfigError(fmt::format("{}.max_scored_points = 0, expected >= 1", prefix));
+    }
 }
 
 RobustRegistrationResult robust_register(std::span<const Eigen::Vector3d> source,
                                          std::span<const Eigen::Vector3d> target,
                                          const RobustRegistrationConfig& config) {
     config.validate();
-    check_pairs(source, target);
-    RobustRegistrationResult r;
-    if (source.size() < 3) {
-        r.registration.status = fmt::format("too_few_correspondences: {} < 3", source.size());
-        return r;
-    }
-    const bool yaw_only = config.rotation == RobustRotation::kYawOnly;
-    const double bound = config.noise_bound_m * std::sqrt(config.cbar2);
-    const UndirectedGraph graph =
-        detail::build_consistency_graph(source, target, 2.0 * bound, yaw_only, config.parallel);
-    r.num_consistent_pairs = graph.num_edges();
-    const MaxCliqueResult clique = find_max_clique(graph, config.max_clique);
-    r.max_clique_size = clique.vertices.size();
-    r.max_clique_method = clique.method;
-    if (clique.vertices.size() < 3) {
-        r.registration.status = fmt::format("clique_too_small: {} < 3", clique.vertices.size());
-        return r;
-    }
-    const RotationStep rotation = estimate_rotation(source, target, clique.vertices, config);
-    r.registration.iterations = rotation.iterations;
-    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-    T.linear() = rotation.R;
-    T.translation() = estimate_translation(source, target, rotation.members, rotation.R, bound);
-    r.inliers = find_inliers(source, target, T, bound);
-    refit(source, target, yaw_only, bound, T, r.inliers);
-    r.registration.T_target_source = T;
-    fill_statistics(source, target, r);
-    judge(source, config, r);
-    return r;
+    return register_pairs(source, target, config, nullptr);
 }
 
 RobustRegistrationResult robust_register(const PointCloud& source, const PointCloud& target,
@@ -216,7 +305,11 @@ RobustRegistrationResult robust_register(const PointCloud& source, const PointCl
         s[k] = source.points[correspondences[k].source_index];
         t[k] = target.points[correspondences[k].target_index];
     }
-    return robust_register(s, t, config);
+    config.validate();
+    if (config.hypotheses.num_hypotheses == 1) return register_pairs(s, t, config, nullptr);
+    const detail::OverlapScorer scorer(source, target, config.hypotheses.overlap_distance_m,
+                                       config.hypotheses.max_scored_points);
+    return register_pairs(s, t, config, &scorer);
 }
 
 }  // namespace scantling::registration

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <string>
 #include <vector>
 
 #include <scantling/core/error.hpp>
@@ -201,10 +202,119 @@ TEST(RobustRegistration, CorrespondenceOverloadMatchesPairedPoints) {
     target.points = p.target;
     std::vector<Correspondence> corr;
     for (std::size_t k = 0; k < p.source.size(); ++k) corr.push_back({k, k, 0.0f});
-    const auto a = robust_register(source, target, corr, config());
+    RobustRegistrationConfig c = config();
+    c.hypotheses.num_hypotheses = 1;  // plain TEASER++: exactly the span overload's method
+    const auto a = robust_register(source, target, corr, c);
     const auto b = robust_register(p.source, p.target, config());
     EXPECT_TRUE(a.registration.T_target_source.matrix() == b.registration.T_target_source.matrix());
     EXPECT_EQ(a.inliers, b.inliers);
+    EXPECT_EQ(a.num_hypotheses_scored, 0u);
+}
+
+/// Clouds and correspondences where the largest consistent set is a decoy: the target is the
+/// room corner under `truth()` plus a few points placed at the source's image under
+/// `decoy_pose()`; 12 correspondences follow the truth, 30 the decoy, 150 are random.
+struct DecoyScene {
+    PointCloud source, target;
+    std::vector<Correspondence> correspondences;
+};
+
+Eigen::Isometry3d decoy_pose() {
+    return test::make_pose(-0.2, 0.5, 0.9, Eigen::Vector3d(-0.6, 0.8, 0.1));
+}
+
+DecoyScene make_decoy_scene() {
+    constexpr std::size_t kPoints = 3000, kTrue = 12, kDecoy = 30, kRandom = 150;
+    Rng rng(21);
+    DecoyScene d;
+    d.source = test::sample_room_corner(kPoints, 17, 0.0);
+    for (const Eigen::Vector3d& s : d.source.points) {
+        d.target.points.push_back(truth() * s + rng.normal3(kSigmaM));
+    }
+    auto pick = [&] { return rng.uniform_index(kPoints); };
+    for (std::size_t k = 0; k < kTrue; ++k) {
+        const std::size_t i = pick();
+        d.correspondences.push_back({i, i, 0.0f});
+    }
+    for (std::size_t k = 0; k < kDecoy; ++k) {
+        const std::size_t i = pick();
+        d.correspondences.push_back({i, d.target.points.size(), 0.0f});
+        d.target.points.push_back(decoy_pose() * d.source.points[i] + rng.normal3(kSigmaM));
+    }
+    for (std::size_t k = 0; k < kRandom; ++k) d.correspondences.push_back({pick(), pick(), 0.0f});
+    return d;
+}
+
+TEST(RobustRegistration, OverlapVerificationRejectsALargerDecoyClique) {
+    const DecoyScene d = make_decoy_scene();
+    // Plain TEASER++ trusts the maximum clique: the decoy.
+    RobustRegistrationConfig plain = config();
+    plain.hypotheses.num_hypotheses = 1;
+    const auto wrong = robust_register(d.source, d.target, d.correspondences, plain);
+    EXPECT_LT(pose_error(wrong.registration.T_target_source, decoy_pose()).rotation_rad, kTolRad);
+    EXPECT_GE(wrong.max_clique_size, 25u);
+    EXPECT_EQ(wrong.num_hypotheses_scored, 0u);
+    // Verification scores the next clique too, and the whole source overlaps the target there.
+    const auto r = robust_register(d.source, d.target, d.correspondences, config());
+    ASSERT_TRUE(r.registration.converged) << r.registration.status;
+    const PoseError e = pose_error(r.registration.T_target_source, truth());
+    EXPECT_LT(e.rotation_rad, kTolRad);
+    EXPECT_LT(e.translation_m, kTolM);
+    EXPECT_GE(r.num_hypotheses_scored, 2u);
+    EXPECT_GE(r.winning_hypothesis, 1u);
+    EXPECT_GT(r.overlap, 0.95);
+    EXPECT_GE(r.inliers.size(), 10u);
+    EXPECT_LE(r.inliers.size(), 14u);
+}
+
+TEST(RobustRegistration, PairedPointsOverloadKeepsTheMaximumClique) {
+    // Without clouds nothing can outvote the larger decoy: documented behaviour.
+    const DecoyScene d = make_decoy_scene();
+    Points s, t;
+    for (const Correspondence& c : d.correspondences) {
+        s.push_back(d.source.points[c.source_index]);
+        t.push_back(d.target.points[c.target_index]);
+    }
+    const auto r = robust_register(s, t, config());
+    EXPECT_LT(pose_error(r.registration.T_target_source, decoy_pose()).rotation_rad, kTolRad);
+    EXPECT_EQ(r.num_hypotheses_scored, 0u);
+}
+
+TEST(RobustRegistration, VerificationIsTheSameForOneAndTwoThreads) {
+    const DecoyScene d = make_decoy_scene();
+    RobustRegistrationConfig c1 = config();
+    c1.parallel.num_threads = 1;
+    RobustRegistrationConfig c2 = config();
+    c2.parallel.num_threads = 2;
+    const auto r1 = robust_register(d.source, d.target, d.correspondences, c1);
+    const auto r2 = robust_register(d.source, d.target, d.correspondences, c2);
+    EXPECT_TRUE(r1.registration.T_target_source.matrix() ==
+                r2.registration.T_target_source.matrix());
+    EXPECT_EQ(r1.inliers, r2.inliers);
+    EXPECT_EQ(r1.num_hypotheses_scored, r2.num_hypotheses_scored);
+    EXPECT_EQ(r1.winning_hypothesis, r2.winning_hypothesis);
+    EXPECT_EQ(r1.overlap, r2.overlap);
+}
+
+TEST(RobustRegistration, RejectsBadHypothesisConfig) {
+    const Points three(3, Eigen::Vector3d::Zero());
+    auto expect_config_error = [&](auto mutate, const std::string& field) {
+        RobustRegistrationConfig c = config();
+        mutate(c);
+        try {
+            robust_register(three, three, c);
+            ADD_FAILURE() << field << ": no ConfigError";
+        } catch (const ConfigError& e) {
+            EXPECT_NE(std::string(e.what()).find("robust.hypotheses." + field), std::string::npos)
+                << e.what();
+        }
+    };
+    expect_config_error([](auto& c) { c.hypotheses.num_hypotheses = 0; }, "num_hypotheses");
+    expect_config_error([](auto& c) { c.hypotheses.overlap_distance_m = 0.0; },
+                        "overlap_distance_m");
+    expect_config_error([](auto& c) { c.hypotheses.overlap_distance_m = std::nan(""); },
+                        "overlap_distance_m");
+    expect_config_error([](auto& c) { c.hypotheses.max_scored_points = 0; }, "max_scored_points");
 }
 
 }  // namespace
