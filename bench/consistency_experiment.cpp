@@ -10,7 +10,9 @@
 /// KDE mode and the particle mean land within 10° of the true yaw.
 ///
 /// Usage: scantling_experiment_consistency [trials_per_world = 100] [seed = 1]
-///        [stein_particles = 100]; one thread.
+///        [stein_particles = 100] [cases = all | stein | stein-mockup | stein-column]; one
+///        thread (the stein-* cases skip the ICP variants, so the two worlds can run in two
+///        processes).
 
 #include <fmt/format.h>
 
@@ -152,11 +154,14 @@ void run_stein(const TankScanner& s, const KdTree& tree, const Trial& t, int par
                 r.num_modes);
 }
 
-Results run_scene(const TankScanner& s, int trials, int particles, std::uint64_t seed) {
+/// `with_icp` false: the Stein-ICP cases only (the ICP ones cost ~half the run).
+Results run_scene(const TankScanner& s, int trials, int particles, std::uint64_t seed,
+                  bool with_icp) {
     const bool column = s.scene() == bench::TankScene::kColumn;
     const KdTree tree(s.map().points);
     Results res;
     for (const IcpVariant& v : kIcpVariants) {
+        if (!with_icp) break;
         res.icp.emplace_back().label = fmt::format("{} {}", s.name(), v.label);
     }
     res.stein_mode.label = s.name() + " Stein (mode)";
@@ -167,7 +172,7 @@ Results run_scene(const TankScanner& s, int trials, int particles, std::uint64_t
         Trial t{s.scan(rng), {}};
         // Column: z, roll, pitch known (the Stein-ICP 3-DoF case); ICP still solves 6 DoF.
         t.T_guess = bench::perturbed(t.scan.T_map_body, kGuessTransM, kGuessRotRad, column, rng);
-        run_icp(s, tree, t, res);
+        if (with_icp) run_icp(s, tree, t, res);
         run_stein(s, tree, t, particles, seed * 1000003ULL + static_cast<std::uint64_t>(i), res);
     }
     return res;
@@ -179,12 +184,22 @@ int main(int argc, char** argv) {
     const int trials = argc > 1 ? std::atoi(argv[1]) : 100;
     const std::uint64_t seed = argc > 2 ? std::strtoull(argv[2], nullptr, 10) : 1;
     const int particles = argc > 3 ? std::atoi(argv[3]) : 100;
+    const std::string cases = argc > 4 ? argv[4] : "all";
+    if (cases != "all" && cases != "stein" && cases != "stein-mockup" && cases != "stein-column") {
+        fmt::print(stderr, "cases = {}: expected all, stein, stein-mockup or stein-column\n", cases);
+        return 2;
+    }
+    const bool with_icp = cases == "all";
     bench::print_header();
     bench::YawStats yaw;
     std::string gate_notes;
     for (bench::TankScene scene : {bench::TankScene::kMockup, bench::TankScene::kColumn}) {
+        if ((cases == "stein-mockup" && scene == bench::TankScene::kColumn) ||
+            (cases == "stein-column" && scene == bench::TankScene::kMockup)) {
+            continue;
+        }
         const TankScanner scanner(scene, kVoxelM, seed);
-        const Results r = run_scene(scanner, trials, particles, seed);
+        const Results r = run_scene(scanner, trials, particles, seed, with_icp);
         for (const NeesStats& st : r.icp) bench::print_row(st);
         bench::print_row(r.stein_mode);
         bench::print_row(r.stein_mean);

@@ -117,11 +117,20 @@ Outcome run_icp(const PointCloud& src, const PointCloud& tgt, const Eigen::Isome
     return from_registration(reg::align(src, tgt, init, config));
 }
 
-Outcome run_stein(const PointCloud& src, const PointCloud& tgt, const Eigen::Isometry3d& init,
+Outcome run_stein(const PointCloud& src, PointCloud tgt, const Eigen::Isometry3d& init,
                   const RegisterOptions& o) {
     reg::SteinIcpConfig config;
     if (o.max_distance_m) config.max_correspondence_distance_m = *o.max_distance_m;
+    config.back_faces = reg::back_faces_from_string(o.back_faces, "--back-faces");
     config.parallel.num_threads = o.num_threads;
+    // Point-to-plane likelihood, as p2plane: with point-to-point the posterior of the refined
+    // particles has a local minimum per sampling cell, which shows as spurious KDE modes.
+    if (!tgt.has_normals()) {
+        const reg::IcpConfig icp;
+        estimate_normals(tgt, {.num_neighbors = icp.num_neighbors,
+                               .viewpoint = Eigen::Vector3d::Zero(),
+                               .parallel = {.num_threads = o.num_threads}});
+    }
     const reg::SteinIcpResult r = reg::stein_icp(src, tgt, init, config);
     return {.T_target_source = r.T_target_source,
             .status = fmt::format("particles: {}, modes: {}", r.particles.size(), r.num_modes),

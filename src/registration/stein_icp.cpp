@@ -35,7 +35,7 @@ void require_non_negative(const Vector6d& v, std::string_view prefix, std::strin
 }
 
 void check_inputs(const PointCloud& source, const PointCloud& target, const KdTree& tree,
-                  const Eigen::Isometry3d& T_guess) {
+                  const Eigen::Isometry3d& T_guess, BackFaces back_faces) {
     check_usable(source, "stein_icp source");
     check_usable(target, "stein_icp target");
     if (tree.size() != target.size()) {
@@ -44,6 +44,10 @@ void check_inputs(const PointCloud& source, const PointCloud& target, const KdTr
                         tree.size(), target.size()));
     }
     if (!T_guess.matrix().allFinite()) throw InputError("stein_icp: non-finite initial guess");
+    if (back_faces == BackFaces::kReject && !target.has_normals()) {
+        throw InputError(
+            "stein_icp: back_faces = reject needs target normals pointing to the free side");
+    }
 }
 
 std::vector<Vector6d> init_from_bounds(const Vector6d& guess, const SteinIcpConfig& config,
@@ -116,6 +120,11 @@ void SteinIcpConfig::validate(std::string_view prefix) const {
         throw ConfigError(fmt::format("{}.final_lr_fraction = {}, expected in (0, 1]", prefix,
                                       final_lr_fraction));
     }
+    require_at_least(refine_iterations, 0, prefix, "refine_iterations");
+    if (!(refine_step > 0.0 && refine_step <= 1.0)) {
+        throw ConfigError(
+            fmt::format("{}.refine_step = {}, expected in (0, 1]", prefix, refine_step));
+    }
     require_non_negative(init_half_widths, prefix, "init_half_widths");
     require_at_least(num_yaw_seeds, 1, prefix, "num_yaw_seeds");
     require_at_least(seed_icp_iterations, 1, prefix, "seed_icp_iterations");
@@ -137,7 +146,7 @@ SteinIcpResult stein_icp(const PointCloud& source, const PointCloud& target,
                          const KdTree& target_tree, const Eigen::Isometry3d& T_target_source_guess,
                          const SteinIcpConfig& config) {
     config.validate();
-    check_inputs(source, target, target_tree, T_target_source_guess);
+    check_inputs(source, target, target_tree, T_target_source_guess, config.back_faces);
     const Vector6d guess = pose_params_from_isometry(T_target_source_guess);
     const std::vector<int> free_dofs = free_dofs_of(config);
     Rng init_rng = Rng(config.seed).split(kInitStream);

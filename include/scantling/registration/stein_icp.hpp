@@ -19,11 +19,28 @@
 /// the translation block and for the rotation block (two kernels, two bandwidths), each block
 /// stepped by Adam with its own learning rate, decayed geometrically over the iterations.
 ///
-/// Cost: K · T · B nearest-neighbour queries plus O(K² T) kernel terms; the particles are
+/// Adam normalises the step, so after those T iterations the particles' spread and their
+/// distance from the optimum are set by the learning rates, not by the posterior (measured on
+/// the ballast-tank mock-up: spread and error both ~cm where the posterior is ~mm, mean NEES
+/// 13.7; docs/results.md). R = `refine_iterations` steps of preconditioned Langevin dynamics
+/// follow, each particle on its own:
+///   xᵢ += ε F⁻¹ ĝᵢ + ξᵢ,   ξᵢ ~ N(0, ε (2 − ε) F⁻¹ − ε² F⁻¹ Cᵢ F⁻¹),
+/// ĝᵢ the batch gradient, Cᵢ its covariance (from the batch's per-point gradients), F the
+/// particles' mean Gauss-Newton information Σ Jᵀ J / σ² (stochastic gradient Fisher scoring,
+/// Ahn, Korattikara & Welling 2012). On a Gaussian posterior N(μ, F⁻¹) the step contracts
+/// xᵢ − μ by (1 − ε) and the injected plus batch noise make the stationary covariance exactly
+/// F⁻¹ for any ε; in the second half of the R steps ε is lowered per particle where the batch
+/// noise alone would exceed that budget. The particles converge to the optimum of their mode
+/// and then sample the posterior there, so `covariance` is the posterior of the stated
+/// likelihood: its width scales with `noise_sigma_m`. The modes found by the SVGD steps are
+/// kept (no particle leaves its basin).
+///
+/// Cost: K · (T + R) · B nearest-neighbour queries plus O(K² T) kernel terms; the particles are
 /// processed in parallel (TBB arena of `parallel.num_threads`).
 /// Thread-safety: the functions only read their inputs.
 /// @note Deterministic: particle i draws its batch at iteration t from the stream
-/// `Rng(seed).split(t · K + i)`, and every sum over particles runs in index order, so the same
+/// `Rng(seed).split(t · K + i)` and its Langevin noise at refinement step r from
+/// `split((T + R + r) · K + i)`, and every sum over particles runs in index order, so the same
 /// seed gives bit-identical particles for any thread count.
 
 #include <Eigen/Core>
@@ -37,6 +54,7 @@
 #include <scantling/core/parallel.hpp>
 #include <scantling/core/point_cloud.hpp>
 #include <scantling/core/se3.hpp>
+#include <scantling/registration/icp.hpp>
 
 namespace scantling::registration {
 
@@ -56,15 +74,32 @@ struct SteinIcpConfig {
     int batch_size = 100;     ///< B source points per particle and iteration, >= 1
     /// Pairs farther apart than this are dropped, metres, > 0. Must exceed the initial spread.
     double max_correspondence_distance_m = 0.5;
+    /// Pairing with the hidden face of a thin plate (IcpConfig::back_faces; the sensor is the
+    /// source frame's origin, the target's normals must point to the free side; kReject needs
+    /// target normals, the others without normals keep the nearest point). Its bias
+    /// along the view, shared by every particle, is not an uncertainty (docs/results.md, NEES
+    /// section), so the default is ICP's.
+    BackFaces back_faces = BackFaces::kPreferFront;
     /// σ of the point residuals, metres, > 0: the likelihood's temperature. Sensor noise plus
-    /// map error; smaller means a tighter posterior.
+    /// map error; smaller means a tighter posterior. With `refine_iterations` > 0 it sets the
+    /// reported covariance (∝ σ²). 5 cm (SPEC §7) is conservative in the ballast-tank mock-up
+    /// (docs/results.md: spread 2–4× the error there).
     double noise_sigma_m = 0.05;
     /// Adam learning rates: the largest step per iteration, metres and radians, > 0.
     double translation_lr_m = 0.03;
     double rotation_lr_rad = 0.015;
     /// Learning rate at the last iteration as a fraction of the first, in (0, 1]: the decay
-    /// lets the batch noise settle so the spread reflects the posterior rather than the step.
+    /// lets the particles settle into their modes before the refinement steps.
     double final_lr_fraction = 0.05;
+    /// R, >= 0: preconditioned Langevin steps after the SVGD ones (file comment), which let the
+    /// particles converge and then sample the posterior, so the spread is the posterior's and
+    /// not the learning rates'. 0 = SVGD only (spread and error ~cm in the mock-up). 30: at
+    /// ε = 0.5 an offset of 100 posterior σ decays to < 1 σ in 7 steps; the rest mix.
+    int refine_iterations = 30;
+    /// ε of those steps, in (0, 1]: the share of the offset from a Gaussian posterior's mean
+    /// removed per step. 0.5: fast, and leaves room for batch noise up to λ = 3 times the
+    /// posterior's (λ ≈ (N / B) (s / σ)², s the residual RMS) before the step must shrink.
+    double refine_step = 0.5;
     /// x, y, yaw only; z, roll and pitch stay exactly those of the guess (known from the robot).
     bool reduced_3dof = false;
     SteinInit init = SteinInit::kBounds;
@@ -104,8 +139,8 @@ struct SteinIcpResult {
 };
 
 /// Registers `source` to `target` starting from `T_target_source_guess`.
-/// Throws InputError for an empty, inconsistent or non-finite cloud or a non-finite guess,
-/// ConfigError for a bad config.
+/// Throws InputError for an empty, inconsistent or non-finite cloud, a non-finite guess or
+/// back_faces = kReject without target normals, ConfigError for a bad config.
 SteinIcpResult stein_icp(const PointCloud& source, const PointCloud& target,
                          const Eigen::Isometry3d& T_target_source_guess,
                          const SteinIcpConfig& config);

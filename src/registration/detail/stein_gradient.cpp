@@ -1,5 +1,7 @@
 #include "stein_gradient.hpp"
 
+#include <optional>
+
 namespace scantling::registration::detail {
 
 EulerPose make_euler_pose(const Vector6d& params) {
@@ -12,15 +14,56 @@ EulerPose make_euler_pose(const Vector6d& params) {
     return pose;
 }
 
+namespace {
+
+/// d(R p)/d(roll, pitch, yaw): d R_x/d roll = R_x hat(e_x), and so on.
+Eigen::Matrix3d rotated_point_jacobian(const EulerPose& pose, const Eigen::Vector3d& p_source) {
+    Eigen::Matrix3d dRp;
+    dRp.col(0) = pose.R * Eigen::Vector3d::UnitX().cross(p_source);
+    dRp.col(1) = pose.R_z * pose.R_y * Eigen::Vector3d::UnitY().cross(pose.R_x * p_source);
+    dRp.col(2) = Eigen::Vector3d::UnitZ().cross(pose.R * p_source);
+    return dRp;
+}
+
+// As in ICP (linearize.cpp): a plate sampled alike on both faces puts about half of any 8
+// nearest points on the front face.
+constexpr std::size_t kFrontFaceNeighbors = 8;
+
+/// The hidden face of a plate: its outward normal points away from the sensor at `origin`.
+bool is_back_face(std::span<const Eigen::Vector3d> points, std::span<const Eigen::Vector3d> normals,
+                  std::size_t j, const Eigen::Vector3d& origin) {
+    return normals[j].dot(origin - points[j]) <= 0.0;
+}
+
+/// The target point to pair with `q` per `back_faces` (IcpConfig::back_faces); nullopt: none.
+std::optional<Neighbor> correspondent(const KdTree& tree, std::span<const Eigen::Vector3d> normals,
+                                      const Eigen::Vector3d& q, const Eigen::Vector3d& origin,
+                                      double max_sq, BackFaces back_faces,
+                                      std::vector<std::size_t>& indices,
+                                      std::vector<double>& distances_sq) {
+    std::optional<Neighbor> nn = tree.nearest(q);
+    if (!nn || nn->distance_sq_m2 > max_sq) return std::nullopt;
+    if (normals.empty() || back_faces == BackFaces::kKeep ||
+        !is_back_face(tree.points(), normals, nn->index, origin)) {
+        return nn;
+    }
+    if (back_faces == BackFaces::kReject) return std::nullopt;
+    const std::size_t n = tree.knn(q, kFrontFaceNeighbors, indices, distances_sq);
+    for (std::size_t k = 0; k < n && distances_sq[k] <= max_sq; ++k) {
+        if (!is_back_face(tree.points(), normals, indices[k], origin)) {
+            return Neighbor{indices[k], distances_sq[k]};
+        }
+    }
+    return nn;  // no front face near: the normals are not oriented for this sensor
+}
+
+}  // namespace
+
 Vector6d residual_sq_gradient(const EulerPose& pose, const Eigen::Vector3d& p_source,
                               const Eigen::Vector3d& q_target, const Eigen::Vector3d* normal) {
     const Eigen::Vector3d Rp = pose.R * p_source;
     const Eigen::Vector3d e = Rp + pose.t - q_target;
-    // d(R p)/d(angle) for each Euler angle: d R_x/d roll = R_x hat(e_x), and so on.
-    Eigen::Matrix3d dRp;
-    dRp.col(0) = pose.R * Eigen::Vector3d::UnitX().cross(p_source);
-    dRp.col(1) = pose.R_z * pose.R_y * Eigen::Vector3d::UnitY().cross(pose.R_x * p_source);
-    dRp.col(2) = Eigen::Vector3d::UnitZ().cross(Rp);
+    const Eigen::Matrix3d dRp = rotated_point_jacobian(pose, p_source);
     // Both costs are eᵀ W e with W = I or n nᵀ: the gradient is 2 (W e)ᵀ d(e).
     const Eigen::Vector3d We = normal != nullptr ? Eigen::Vector3d(normal->dot(e) * *normal) : e;
     Vector6d g;
@@ -29,19 +72,35 @@ Vector6d residual_sq_gradient(const EulerPose& pose, const Eigen::Vector3d& p_so
     return g;
 }
 
+Matrix6d residual_information(const EulerPose& pose, const Eigen::Vector3d& p_source,
+                              const Eigen::Vector3d* normal) {
+    Eigen::Matrix<double, 3, 6> J;
+    J.leftCols<3>().setIdentity();
+    J.rightCols<3>() = rotated_point_jacobian(pose, p_source);
+    if (normal == nullptr) return J.transpose() * J;
+    const Eigen::Matrix<double, 1, 6> Jn = normal->transpose() * J;
+    return Jn.transpose() * Jn;
+}
+
 BatchGradient batch_gradient(const Vector6d& params, std::span<const Eigen::Vector3d> source,
                              std::span<const std::size_t> indices, const KdTree& target_tree,
-                             std::span<const Eigen::Vector3d> target_normals,
-                             double max_distance_m) {
+                             std::span<const Eigen::Vector3d> target_normals, double max_distance_m,
+                             BackFaces back_faces) {
     const EulerPose pose = make_euler_pose(params);
     const double max_sq = max_distance_m * max_distance_m;
     const auto& target = target_tree.points();
+    std::vector<std::size_t> knn_indices;
+    std::vector<double> knn_distances_sq;
     BatchGradient out;
     for (const std::size_t i : indices) {
-        const auto nn = target_tree.nearest(pose.R * source[i] + pose.t);
-        if (!nn || nn->distance_sq_m2 > max_sq) continue;
+        const auto nn = correspondent(target_tree, target_normals, pose.R * source[i] + pose.t,
+                                      pose.t, max_sq, back_faces, knn_indices, knn_distances_sq);
+        if (!nn) continue;
         const Eigen::Vector3d* n = target_normals.empty() ? nullptr : &target_normals[nn->index];
-        out.sum += residual_sq_gradient(pose, source[i], target[nn->index], n);
+        const Vector6d g = residual_sq_gradient(pose, source[i], target[nn->index], n);
+        out.sum += g;
+        out.sum_outer += g * g.transpose();
+        out.information += residual_information(pose, source[i], n);
         ++out.num_inliers;
     }
     return out;

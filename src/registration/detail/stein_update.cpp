@@ -1,5 +1,7 @@
 #include "stein_update.hpp"
 
+#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 
@@ -53,6 +55,8 @@ struct Adam {
 
 struct SvgdState {
     std::vector<Vector6d> grad_log_p;
+    std::vector<Matrix6d> information;  ///< −∇² log p (Gauss-Newton) per particle
+    std::vector<Matrix6d> grad_noise;   ///< covariance of grad_log_p's batch estimate
     std::vector<Adam> adam;
     std::vector<Block> blocks;
 };
@@ -80,9 +84,23 @@ void compute_gradients(const std::vector<Vector6d>& particles,
         for (std::size_t i = begin; i < end; ++i) {
             Rng rng = base.split(static_cast<std::uint64_t>(iteration) * k + i);
             const std::vector<std::size_t> idx = rng.sample_indices(source.size(), batch);
-            const BatchGradient g = batch_gradient(particles[i], source, idx, tree, normals,
-                                                   config.max_correspondence_distance_m);
+            const BatchGradient g =
+                batch_gradient(particles[i], source, idx, tree, normals,
+                               config.max_correspondence_distance_m, config.back_faces);
             state.grad_log_p[i] = scale * g.sum;
+            // −∇² log p = Σ Jᵀ J / σ² (Gauss-Newton) over all N points: −2 · scale times the
+            // batch sum.
+            state.information[i] = -2.0 * scale * g.information;
+            // The batch is a sample without replacement of B of the N per-point gradients:
+            // Var(scale · Σ) = scale² · m · (1 − B / N) · (their sample covariance).
+            const auto m = static_cast<double>(g.num_inliers);
+            state.grad_noise[i].setZero();
+            if (g.num_inliers >= 2) {
+                const Matrix6d cov = (g.sum_outer - g.sum * g.sum.transpose() / m) / (m - 1.0);
+                const double fpc =
+                    1.0 - static_cast<double>(batch) / static_cast<double>(source.size());
+                state.grad_noise[i] = scale * scale * m * fpc * cov;
+            }
         }
     });
 }
@@ -129,12 +147,99 @@ void svgd_step(std::vector<Vector6d>& particles, SvgdState& state, double lr_sca
     particles.swap(next);
 }
 
+/// Free DoFs in block order (the blocks partition them).
+std::vector<int> free_dofs(const SvgdState& state) {
+    std::vector<int> dofs;
+    for (const Block& b : state.blocks) dofs.insert(dofs.end(), b.dofs.begin(), b.dofs.end());
+    return dofs;
+}
+
+/// One step of preconditioned Langevin dynamics with the batch-noise correction of stochastic
+/// gradient Fisher scoring (Ahn, Korattikara & Welling 2012), F the particles' mean information:
+///   xᵢ += ε F⁻¹ ĝᵢ + ξᵢ,   ξᵢ ~ N(0, ε (2 − ε) F⁻¹ − ε² F⁻¹ Cᵢ F⁻¹),
+/// ĝᵢ the batch estimate of ∇log p and Cᵢ its covariance. On a Gaussian posterior N(μ, F⁻¹) the
+/// deterministic part maps xᵢ − μ to (1 − ε)(xᵢ − μ), and the injected plus the batch noise
+/// make the stationary covariance exactly F⁻¹, whatever ε: the spread is the posterior's, not
+/// a learning rate's. Each particle moves in its own basin, so the modes found by the SVGD
+/// steps are kept. A particle whose batch noise alone would exceed that budget takes a smaller ε.
+void langevin_step(std::vector<Vector6d>& particles, const SvgdState& state, double step,
+                   bool cap_step, double max_distance_m, const Rng& noise_streams,
+                   std::uint64_t stream_base, const ParallelConfig& parallel) {
+    const std::vector<int> dofs = free_dofs(state);
+    const auto n = static_cast<Eigen::Index>(dofs.size());
+    auto restrict = [&](const Matrix6d& m) {
+        Eigen::MatrixXd r(n, n);
+        for (Eigen::Index a = 0; a < n; ++a) {
+            for (Eigen::Index b = 0; b < n; ++b) {
+                r(a, b) = m(dofs[static_cast<std::size_t>(a)], dofs[static_cast<std::size_t>(b)]);
+            }
+        }
+        return r;
+    };
+    Eigen::MatrixXd F = Eigen::MatrixXd::Zero(n, n);
+    for (const Matrix6d& info : state.information) F += restrict(info);
+    F /= static_cast<double>(particles.size());
+    // A direction the points do not constrain (a corridor's axis) has F ≈ 0: its posterior is
+    // flat and the noise would carry the particles away without end. A weak Gaussian prior
+    // about the particles' mean, one correspondence distance (translation) and one radian
+    // (rotation) wide, far below any real curvature, bounds it there (the spread then reports
+    // that width) without changing the constrained directions.
+    Eigen::VectorXd prior_info(n), centre(n);
+    for (Eigen::Index a = 0; a < n; ++a) {
+        const int dof = dofs[static_cast<std::size_t>(a)];
+        const double scale = is_angle(dof) ? 1.0 : max_distance_m;
+        prior_info[a] = 1.0 / (scale * scale);
+        F(a, a) += prior_info[a];
+        double sum = 0.0, s = 0.0, c = 0.0;
+        for (const Vector6d& x : particles) {
+            sum += x[dof];
+            s += std::sin(x[dof]);
+            c += std::cos(x[dof]);
+        }
+        centre[a] = is_angle(dof) ? std::atan2(s, c) : sum / static_cast<double>(particles.size());
+    }
+    const Eigen::MatrixXd F_inv = F.inverse();  // n <= 6, symmetric positive definite
+    parallel_for(parallel, particles.size(), 1, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i) {
+            Eigen::VectorXd g(n);
+            for (Eigen::Index a = 0; a < n; ++a) {
+                const int dof = dofs[static_cast<std::size_t>(a)];
+                g[a] = state.grad_log_p[i][dof] -
+                       prior_info[a] * difference(particles[i][dof], centre[a], is_angle(dof));
+            }
+            const Eigen::MatrixXd C = restrict(state.grad_noise[i]);
+            // The batch noise fits the budget when ε² C ≤ ε (2 − ε) F (Loewner order), i.e.
+            // ε ≤ 2 / (1 + λ), λ the largest eigenvalue of C relative to F: smaller steps
+            // for a noisy batch keep the stationary covariance F⁻¹ (only the mixing slows).
+            const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> rel(C, F);
+            const double lambda = std::max(rel.eigenvalues().maxCoeff(), 0.0);
+            const double eps = cap_step ? std::min(step, 2.0 / (1.0 + lambda)) : step;
+            Eigen::MatrixXd noise_cov = eps * (2.0 - eps) * F_inv - eps * eps * F_inv * C * F_inv;
+            noise_cov = 0.5 * (noise_cov + noise_cov.transpose());
+            const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(noise_cov);
+            Rng rng = noise_streams.split(stream_base + i);
+            Eigen::VectorXd xi(n);
+            for (Eigen::Index a = 0; a < n; ++a) {
+                xi[a] = std::sqrt(std::max(eig.eigenvalues()[a], 0.0)) * rng.normal();
+            }
+            const Eigen::VectorXd dx = eps * (F_inv * g) + eig.eigenvectors() * xi;
+            for (Eigen::Index a = 0; a < n; ++a) {
+                const int dof = dofs[static_cast<std::size_t>(a)];
+                particles[i][dof] += dx[a];
+                if (is_angle(dof)) particles[i][dof] = wrap_angle(particles[i][dof]);
+            }
+        }
+    });
+}
+
 }  // namespace
 
 void run_svgd(std::vector<Vector6d>& particles, std::span<const Eigen::Vector3d> source,
               const KdTree& target_tree, std::span<const Eigen::Vector3d> target_normals,
               const SteinIcpConfig& config) {
     SvgdState state{std::vector<Vector6d>(particles.size(), Vector6d::Zero()),
+                    std::vector<Matrix6d>(particles.size(), Matrix6d::Zero()),
+                    std::vector<Matrix6d>(particles.size(), Matrix6d::Zero()),
                     std::vector<Adam>(particles.size()), make_blocks(config)};
     const int t_max = config.iterations;
     for (int t = 0; t < t_max; ++t) {
@@ -144,6 +249,16 @@ void run_svgd(std::vector<Vector6d>& particles, std::span<const Eigen::Vector3d>
             t_max > 1 ? std::pow(config.final_lr_fraction, static_cast<double>(t) / (t_max - 1))
                       : 1.0;
         svgd_step(particles, state, lr_scale, t + 1, config.parallel);
+    }
+    // Batch streams use t · K + i for t < T + R; the Langevin noise takes the ones after.
+    const Rng noise_streams(config.seed);
+    const int t_all = t_max + config.refine_iterations;
+    const auto k = static_cast<std::uint64_t>(particles.size());
+    for (int t = 0; t < config.refine_iterations; ++t) {
+        compute_gradients(particles, source, target_tree, target_normals, config, t_max + t, state);
+        langevin_step(particles, state, config.refine_step, 2 * t >= config.refine_iterations,
+                      config.max_correspondence_distance_m, noise_streams,
+                      static_cast<std::uint64_t>(t_all + t) * k, config.parallel);
     }
 }
 
