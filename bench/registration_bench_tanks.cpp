@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <array>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include <fmt/format.h>
@@ -153,10 +154,12 @@ void set_counters(benchmark::State& state, const PassStats& s, std::size_t pairs
     state.counters["pairs"] = n;
 }
 
-void icp_ours(benchmark::State& state, TankScene scene, PairKind kind, int method, int threads) {
+void icp_ours(benchmark::State& state, TankScene scene, PairKind kind, int method, int threads,
+              registration::BackFaces back_faces) {
     const auto& pairs = tank_pairs(scene, kind);
     registration::IcpConfig c;
     c.method = static_cast<registration::IcpMethod>(method);
+    c.back_faces = back_faces;
     c.max_correspondence_distance_m = kIcpMaxDistanceM;
     c.max_iterations = kIcpMaxIterations;
     c.parallel = threads_config(threads);
@@ -278,10 +281,17 @@ void register_pair_kind(TankScene scene, PairKind kind, int th) {
     const std::string prefix =
         fmt::format("registration_{}_{}", scene == TankScene::kColumn ? "column" : "mockup",
                     kind == PairKind::kMap ? "map" : "scan");
-    for (int m : {0, 1}) {
-        const std::string icp = prefix + (m == 0 ? "_icp_p2point" : "_icp_p2plane");
-        add_pass(fmt::format("{}/ours/{}thr", icp, th), icp_ours, scene, kind, m, th);
-        add_pass(fmt::format("{}/open3d/{}thr", icp, th), icp_open3d, scene, kind, m, th);
+    // The CAD map holds both faces of every plate: our default pairs scans with the visible
+    // face (more accurate, extra searches); "_keep" pairs with the nearest point, as Open3D does.
+    std::vector<registration::BackFaces> modes{registration::BackFaces::kPreferFront};
+    if (kind == PairKind::kMap) modes.push_back(registration::BackFaces::kKeep);
+    for (const registration::BackFaces mode : modes) {
+        const std::string suffix = mode == registration::BackFaces::kKeep ? "_keep" : "";
+        for (int m : {0, 1}) {
+            const std::string icp = prefix + (m == 0 ? "_icp_p2point" : "_icp_p2plane") + suffix;
+            add_pass(fmt::format("{}/ours/{}thr", icp, th), icp_ours, scene, kind, m, th, mode);
+            add_pass(fmt::format("{}/open3d/{}thr", icp, th), icp_open3d, scene, kind, m, th);
+        }
     }
     const std::string g = prefix + "_global";
     add_pass(fmt::format("{}/ours/{}thr", g, th), global_ours, scene, kind, th);

@@ -19,18 +19,18 @@ using detail::require_at_least;
 using detail::require_open_unit;
 using detail::require_positive;
 
-constexpr std::array<std::pair<IcpMethod, std::string_view>, 3> kMethodNames = {{
+constexpr detail::EnumNames<IcpMethod, 3> kMethodNames = {{
     {IcpMethod::kPointToPoint, "point_to_point"},
     {IcpMethod::kPointToPlane, "point_to_plane"},
     {IcpMethod::kGeneralized, "gicp"},
 }};
 
-constexpr std::array<std::pair<IcpCovariance, std::string_view>, 2> kCovarianceNames = {{
+constexpr detail::EnumNames<IcpCovariance, 2> kCovarianceNames = {{
     {IcpCovariance::kHessian, "hessian"},
     {IcpCovariance::kClusteredSandwich, "clustered_sandwich"},
 }};
 
-constexpr std::array<std::pair<BackFaces, std::string_view>, 3> kBackFaceNames = {{
+constexpr detail::EnumNames<BackFaces, 3> kBackFaceNames = {{
     {BackFaces::kKeep, "keep"},
     {BackFaces::kPreferFront, "prefer_front"},
     {BackFaces::kReject, "reject"},
@@ -116,49 +116,24 @@ detail::Problem make_problem(const PointCloud& source, const PointCloud& target,
 
 }  // namespace
 
-std::string_view to_string(IcpMethod method) {
-    for (const auto& [m, name] : kMethodNames) {
-        if (m == method) return name;
-    }
-    return "unknown";
-}
+std::string_view to_string(IcpMethod method) { return detail::enum_name(kMethodNames, method); }
 
 IcpMethod icp_method_from_string(std::string_view name, std::string_view field) {
-    for (const auto& [m, n] : kMethodNames) {
-        if (n == name) return m;
-    }
-    throw ConfigError(fmt::format(
-        "{} = \"{}\", expected one of point_to_point, point_to_plane, gicp", field, name));
+    return detail::enum_value(kMethodNames, name, field);
 }
 
-std::string_view to_string(BackFaces mode) {
-    for (const auto& [m, name] : kBackFaceNames) {
-        if (m == mode) return name;
-    }
-    return "unknown";
-}
+std::string_view to_string(BackFaces mode) { return detail::enum_name(kBackFaceNames, mode); }
 
 BackFaces back_faces_from_string(std::string_view name, std::string_view field) {
-    for (const auto& [m, n] : kBackFaceNames) {
-        if (n == name) return m;
-    }
-    throw ConfigError(
-        fmt::format("{} = \"{}\", expected one of keep, prefer_front, reject", field, name));
+    return detail::enum_value(kBackFaceNames, name, field);
 }
 
 std::string_view to_string(IcpCovariance model) {
-    for (const auto& [m, name] : kCovarianceNames) {
-        if (m == model) return name;
-    }
-    return "unknown";
+    return detail::enum_name(kCovarianceNames, model);
 }
 
 IcpCovariance icp_covariance_from_string(std::string_view name, std::string_view field) {
-    for (const auto& [m, n] : kCovarianceNames) {
-        if (n == name) return m;
-    }
-    throw ConfigError(
-        fmt::format("{} = \"{}\", expected one of hessian, clustered_sandwich", field, name));
+    return detail::enum_value(kCovarianceNames, name, field);
 }
 
 void IcpConfig::validate(std::string_view prefix) const {

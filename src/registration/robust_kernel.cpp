@@ -1,16 +1,15 @@
-#include <scantling/core/error.hpp>
 #include <scantling/registration/robust_kernel.hpp>
 
 #include <array>
 #include <cmath>
 #include <utility>
 
-#include <fmt/format.h>
+#include "detail/config_checks.hpp"
 
 namespace scantling::registration {
 namespace {
 
-constexpr std::array<std::pair<RobustKernel, std::string_view>, 5> kNames = {{
+constexpr detail::EnumNames<RobustKernel, 5> kNames = {{
     {RobustKernel::kNone, "none"},
     {RobustKernel::kHuber, "huber"},
     {RobustKernel::kCauchy, "cauchy"},
@@ -31,19 +30,10 @@ double tukey_loss(double r, double s) {
 
 }  // namespace
 
-std::string_view to_string(RobustKernel kernel) {
-    for (const auto& [k, name] : kNames) {
-        if (k == kernel) return name;
-    }
-    return "unknown";
-}
+std::string_view to_string(RobustKernel kernel) { return detail::enum_name(kNames, kernel); }
 
 RobustKernel robust_kernel_from_string(std::string_view name, std::string_view field) {
-    for (const auto& [k, n] : kNames) {
-        if (n == name) return k;
-    }
-    throw ConfigError(fmt::format(
-        "{} = \"{}\", expected one of none, huber, cauchy, geman_mcclure, tukey", field, name));
+    return detail::enum_value(kNames, name, field);
 }
 
 double robust_weight(RobustKernel kernel, double residual, double scale) {

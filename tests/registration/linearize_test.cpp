@@ -156,16 +156,22 @@ TEST(LinearizeTest, MapErrorAddsSigmaSquaredTimesTheCellSensitivitiesToTheSandwi
     EXPECT_TRUE((*u2.covariance * u2.information).isApprox(Matrix6d::Identity(), 1e-6));
 }
 
+/// Point-to-plane from `source` (already in the target frame) to `target`, 0.5 m reach.
+detail::Problem plane_problem(const PointCloud& source, const PointCloud& target,
+                              const KdTree& tree) {
+    return {.source_points = &source.points,
+            .target_tree = &tree,
+            .target_normals = &target.normals,
+            .method = IcpMethod::kPointToPlane,
+            .max_correspondence_distance_m = 0.5,
+            .parallel = {}};
+}
+
 TEST(LinearizeTest, BackFaceRejectionDropsExactlyThePairsFacingAwayFromTheSourceOrigin) {
     const PointCloud target = test::sample_plated_room_corner(20000, 41, 0.01, true);
     const PointCloud source = test::sample_plated_room_corner(2000, 42, 0.01, false);
     const KdTree tree(target.points);
-    detail::Problem p{.source_points = &source.points,
-                      .target_tree = &tree,
-                      .target_normals = &target.normals,
-                      .method = IcpMethod::kPointToPlane,
-                      .max_correspondence_distance_m = 0.5,
-                      .parallel = {}};
+    detail::Problem p = plane_problem(source, target, tree);
     const detail::LinearSystem all = detail::linearize(p, Eigen::Isometry3d::Identity());
     p.front_normals = &target.normals;  // the source origin, the sensor, is the room's centre
     p.reject_back_faces = true;
@@ -188,13 +194,8 @@ TEST(LinearizeTest, PreferringFrontFacesKeepsEveryPairAndMostlyTheVisibleFace) {
     const PointCloud target = test::sample_plated_room_corner(20000, 41, 0.01, true);
     const PointCloud source = test::sample_plated_room_corner(2000, 42, 0.01, false);
     const KdTree tree(target.points);
-    detail::Problem p{.source_points = &source.points,
-                      .target_tree = &tree,
-                      .target_normals = &target.normals,
-                      .method = IcpMethod::kPointToPlane,
-                      .max_correspondence_distance_m = 0.5,
-                      .parallel = {},
-                      .front_normals = &target.normals};
+    detail::Problem p = plane_problem(source, target, tree);
+    p.front_normals = &target.normals;
     const detail::LinearSystem front = detail::linearize(p, Eigen::Isometry3d::Identity());
     p.reject_back_faces = true;
     const detail::LinearSystem rejected = detail::linearize(p, Eigen::Isometry3d::Identity());
@@ -215,12 +216,7 @@ TEST(LinearizeTest, PreferringFrontFacesKeepsTheNearestWhereNoNormalFacesTheSens
     for (Eigen::Vector3d& n : target.normals) n = -n;
     const PointCloud source = test::sample_plated_room_corner(2000, 44, 0.01, false);
     const KdTree tree(target.points);
-    detail::Problem p{.source_points = &source.points,
-                      .target_tree = &tree,
-                      .target_normals = &target.normals,
-                      .method = IcpMethod::kPointToPlane,
-                      .max_correspondence_distance_m = 0.5,
-                      .parallel = {}};
+    detail::Problem p = plane_problem(source, target, tree);
     const detail::LinearSystem plain = detail::linearize(p, Eigen::Isometry3d::Identity());
     p.front_normals = &target.normals;
     const detail::LinearSystem preferred = detail::linearize(p, Eigen::Isometry3d::Identity());

@@ -90,7 +90,12 @@ struct RobustRegistrationConfig {
     /// ConfigError. Kept so configs can state it explicitly, as in TEASER++.
     bool estimate_scaling = false;
     RobustRotation rotation = RobustRotation::kFull;  ///< 6-DoF or gravity-aligned 4-DoF
-    MaxCliqueConfig max_clique;                       ///< exact-search limits (see max_clique.hpp)
+    /// Exact-search limits (see max_clique.hpp). 2·10⁴ search nodes instead of MaxCliqueConfig's
+    /// 10⁵: with the hypotheses verified, the maximum clique need not be exact. On the simulated
+    /// tank scan pairs (50 per case) success and median errors were the same at 2·10⁴ and 10⁵,
+    /// and the scan pairs took 20–35 % less time (docs/benchmarks.md).
+    MaxCliqueConfig max_clique{
+        .solve_exactly = true, .max_vertices_exact = 20000, .max_search_nodes = 20'000};
     /// Most GNC iterations of the rotation solver, >= 1 (TEASER++: rotation_max_iterations 100).
     int gnc_max_iterations = 100;
     /// Factor by which GNC's μ grows each iteration (the surrogate cost approaches TLS), > 1.
