@@ -186,7 +186,8 @@ int main(int argc, char** argv) {
     const int particles = argc > 3 ? std::atoi(argv[3]) : 100;
     const std::string cases = argc > 4 ? argv[4] : "all";
     if (cases != "all" && cases != "stein" && cases != "stein-mockup" && cases != "stein-column") {
-        fmt::print(stderr, "cases = {}: expected all, stein, stein-mockup or stein-column\n", cases);
+        fmt::print(stderr, "cases = {}: expected all, stein, stein-mockup or stein-column\n",
+                   cases);
         return 2;
     }
     const bool with_icp = cases == "all";
