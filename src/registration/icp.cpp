@@ -93,10 +93,8 @@ detail::Problem make_problem(const PointCloud& source, const PointCloud& target,
                       .kernel = config.kernel,
                       .kernel_scale_m = config.kernel_scale_m,
                       .parallel = config.parallel,
-                      .front_normals = config.back_faces != BackFaces::kKeep && target.has_normals()
-                                           ? &target.normals
-                                           : nullptr,
-                      .reject_back_faces = config.back_faces == BackFaces::kReject};
+                      .front_normals = target.has_normals() ? &target.normals : nullptr,
+                      .back_faces = config.back_faces};
     if (config.method == IcpMethod::kPointToPlane) {
         if (!target.has_normals()) prepared.target_normals = target_normals(target, tree, config);
         p.target_normals = target.has_normals() ? &target.normals : &prepared.target_normals;

@@ -174,7 +174,7 @@ TEST(LinearizeTest, BackFaceRejectionDropsExactlyThePairsFacingAwayFromTheSource
     detail::Problem p = plane_problem(source, target, tree);
     const detail::LinearSystem all = detail::linearize(p, Eigen::Isometry3d::Identity());
     p.front_normals = &target.normals;  // the source origin, the sensor, is the room's centre
-    p.reject_back_faces = true;
+    p.back_faces = BackFaces::kReject;
     const detail::LinearSystem front = detail::linearize(p, Eigen::Isometry3d::Identity());
     std::size_t facing = 0;
     for (const Eigen::Vector3d& q : source.points) {
@@ -197,7 +197,7 @@ TEST(LinearizeTest, PreferringFrontFacesKeepsEveryPairAndMostlyTheVisibleFace) {
     detail::Problem p = plane_problem(source, target, tree);
     p.front_normals = &target.normals;
     const detail::LinearSystem front = detail::linearize(p, Eigen::Isometry3d::Identity());
-    p.reject_back_faces = true;
+    p.back_faces = BackFaces::kReject;
     const detail::LinearSystem rejected = detail::linearize(p, Eigen::Isometry3d::Identity());
     EXPECT_EQ(front.count, source.size());  // no pair lost, unlike kReject
     EXPECT_LT(rejected.count, source.size() * 9 / 10);
@@ -220,7 +220,7 @@ TEST(LinearizeTest, PreferringFrontFacesKeepsTheNearestWhereNoNormalFacesTheSens
     const detail::LinearSystem plain = detail::linearize(p, Eigen::Isometry3d::Identity());
     p.front_normals = &target.normals;
     const detail::LinearSystem preferred = detail::linearize(p, Eigen::Isometry3d::Identity());
-    p.reject_back_faces = true;
+    p.back_faces = BackFaces::kReject;
     const detail::LinearSystem rejected = detail::linearize(p, Eigen::Isometry3d::Identity());
     EXPECT_EQ(plain.count, source.size());
     EXPECT_EQ(preferred.count, plain.count);

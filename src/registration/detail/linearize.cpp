@@ -2,9 +2,12 @@
 
 #include <cmath>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include <scantling/registration/factors.hpp>
+
+#include "back_faces.hpp"
 
 namespace scantling::registration::detail {
 namespace {
@@ -97,40 +100,14 @@ void accumulate(LinearSystem& s, const Problem& p, const Eigen::Matrix3d& R, std
     }
 }
 
-// Neighbours searched for a front face when the nearest point faces away. A plate sampled
-// alike on both faces puts about half of any 8 nearest points on the front face.
-constexpr std::size_t kFrontFaceNeighbors = 8;
-
-/// The hidden face of a plate (IcpConfig::back_faces): its outward normal points away from
-/// the sensor at `origin`.
-bool is_back_face(const Problem& p, std::size_t j, const Eigen::Vector3d& origin) {
-    return p.front_normals != nullptr &&
-           (*p.front_normals)[j].dot(origin - p.target_tree->points()[j]) <= 0.0;
-}
-
-/// Scratch of the front-face search, reused within a chunk.
-struct KnnBuffers {
-    std::vector<std::size_t> indices;
-    std::vector<double> distances_sq_m2;
-};
-
-/// The target point to pair with `q`: the nearest, or per `back_faces` the nearest front face
-/// (BackFaces::kPreferFront) or none (kReject). nullopt: no pair.
+/// The target point to pair with `q` per the problem's back-face handling; nullopt: none.
 std::optional<Neighbor> correspondent(const Problem& p, const Eigen::Vector3d& q,
                                       const Eigen::Vector3d& origin, double max_sq,
-                                      KnnBuffers& buffers) {
-    std::optional<Neighbor> nn = p.target_tree->nearest(q);
-    if (!nn || nn->distance_sq_m2 > max_sq) return std::nullopt;
-    if (!is_back_face(p, nn->index, origin)) return nn;
-    if (p.reject_back_faces) return std::nullopt;
-    const std::size_t n =
-        p.target_tree->knn(q, kFrontFaceNeighbors, buffers.indices, buffers.distances_sq_m2);
-    for (std::size_t k = 0; k < n && buffers.distances_sq_m2[k] <= max_sq; ++k) {
-        if (!is_back_face(p, buffers.indices[k], origin)) {
-            return Neighbor{buffers.indices[k], buffers.distances_sq_m2[k]};
-        }
-    }
-    return nn;  // no front face near: the normals are not oriented for this sensor
+                                      FaceSearchBuffers& buffers) {
+    const std::span<const Eigen::Vector3d> normals =
+        p.front_normals != nullptr ? std::span<const Eigen::Vector3d>(*p.front_normals)
+                                   : std::span<const Eigen::Vector3d>();
+    return face_aware_nearest(*p.target_tree, normals, q, origin, max_sq, p.back_faces, buffers);
 }
 
 std::array<std::int64_t, 3> cell_of(const Eigen::Vector3d& q, double cell_size_m) {
@@ -146,7 +123,7 @@ LinearSystem linearize_chunk(const Problem& p, const Eigen::Isometry3d& T, Score
     const Eigen::Matrix3d R = T.linear();
     const Eigen::Vector3d tr = T.translation();
     const double max_sq = p.max_correspondence_distance_m * p.max_correspondence_distance_m;
-    KnnBuffers buffers;
+    FaceSearchBuffers buffers;
     for (std::size_t i = begin; i < end; ++i) {
         const Eigen::Vector3d q = R * (*p.source_points)[i] + tr;
         const std::optional<Neighbor> nn = correspondent(p, q, tr, max_sq, buffers);

@@ -63,9 +63,7 @@ struct Problem {
     ParallelConfig parallel;
     /// Outward target normals for IcpConfig::back_faces; nullptr = plain nearest neighbours.
     const std::vector<Eigen::Vector3d>* front_normals = nullptr;
-    /// With front_normals: drop a pair whose nearest target point faces away (kReject) rather
-    /// than take the nearest front-facing point among the next few (kPreferFront).
-    bool reject_back_faces = false;
+    BackFaces back_faces = BackFaces::kPreferFront;  ///< with front_normals (back_faces.hpp)
 };
 
 /// Linearises the cost at `T_target_source`; with `record` also writes every source point's

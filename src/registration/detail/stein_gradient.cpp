@@ -1,6 +1,6 @@
 #include "stein_gradient.hpp"
 
-#include <optional>
+#include "back_faces.hpp"
 
 namespace scantling::registration::detail {
 
@@ -23,38 +23,6 @@ Eigen::Matrix3d rotated_point_jacobian(const EulerPose& pose, const Eigen::Vecto
     dRp.col(1) = pose.R_z * pose.R_y * Eigen::Vector3d::UnitY().cross(pose.R_x * p_source);
     dRp.col(2) = Eigen::Vector3d::UnitZ().cross(pose.R * p_source);
     return dRp;
-}
-
-// As in ICP (linearize.cpp): a plate sampled alike on both faces puts about half of any 8
-// nearest points on the front face.
-constexpr std::size_t kFrontFaceNeighbors = 8;
-
-/// The hidden face of a plate: its outward normal points away from the sensor at `origin`.
-bool is_back_face(std::span<const Eigen::Vector3d> points, std::span<const Eigen::Vector3d> normals,
-                  std::size_t j, const Eigen::Vector3d& origin) {
-    return normals[j].dot(origin - points[j]) <= 0.0;
-}
-
-/// The target point to pair with `q` per `back_faces` (IcpConfig::back_faces); nullopt: none.
-std::optional<Neighbor> correspondent(const KdTree& tree, std::span<const Eigen::Vector3d> normals,
-                                      const Eigen::Vector3d& q, const Eigen::Vector3d& origin,
-                                      double max_sq, BackFaces back_faces,
-                                      std::vector<std::size_t>& indices,
-                                      std::vector<double>& distances_sq) {
-    std::optional<Neighbor> nn = tree.nearest(q);
-    if (!nn || nn->distance_sq_m2 > max_sq) return std::nullopt;
-    if (normals.empty() || back_faces == BackFaces::kKeep ||
-        !is_back_face(tree.points(), normals, nn->index, origin)) {
-        return nn;
-    }
-    if (back_faces == BackFaces::kReject) return std::nullopt;
-    const std::size_t n = tree.knn(q, kFrontFaceNeighbors, indices, distances_sq);
-    for (std::size_t k = 0; k < n && distances_sq[k] <= max_sq; ++k) {
-        if (!is_back_face(tree.points(), normals, indices[k], origin)) {
-            return Neighbor{indices[k], distances_sq[k]};
-        }
-    }
-    return nn;  // no front face near: the normals are not oriented for this sensor
 }
 
 }  // namespace
@@ -89,12 +57,11 @@ BatchGradient batch_gradient(const Vector6d& params, std::span<const Eigen::Vect
     const EulerPose pose = make_euler_pose(params);
     const double max_sq = max_distance_m * max_distance_m;
     const auto& target = target_tree.points();
-    std::vector<std::size_t> knn_indices;
-    std::vector<double> knn_distances_sq;
+    FaceSearchBuffers buffers;
     BatchGradient out;
     for (const std::size_t i : indices) {
-        const auto nn = correspondent(target_tree, target_normals, pose.R * source[i] + pose.t,
-                                      pose.t, max_sq, back_faces, knn_indices, knn_distances_sq);
+        const auto nn = face_aware_nearest(target_tree, target_normals, pose.R * source[i] + pose.t,
+                                           pose.t, max_sq, back_faces, buffers);
         if (!nn) continue;
         const Eigen::Vector3d* n = target_normals.empty() ? nullptr : &target_normals[nn->index];
         const Vector6d g = residual_sq_gradient(pose, source[i], target[nn->index], n);
