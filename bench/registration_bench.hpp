@@ -6,10 +6,12 @@
 #include <string>
 
 #include <benchmark/benchmark.h>
+#include <open3d/geometry/KDTreeSearchParam.h>
 #include <open3d/geometry/PointCloud.h>
 
 #include <scantling/core/parallel.hpp>
 #include <scantling/core/point_cloud.hpp>
+#include <scantling/registration/fpfh.hpp>
 
 namespace scantling::bench {
 
@@ -43,6 +45,28 @@ inline ParallelConfig threads_config(int threads) {
     ParallelConfig config;
     config.num_threads = threads;
     return config;
+}
+
+/// Global registration settings of every FPFH case (real and simulated): 0.05 m voxels, FPFH
+/// radius 5 voxels (Open3D's and TEASER++'s examples) over at most 100 neighbours, RANSAC's
+/// inlier distance 1.5 voxels (Open3D's example: 0.075 m).
+inline constexpr double kGlobalVoxelM = 0.05;
+inline constexpr double kFpfhRadiusM = 5.0 * kGlobalVoxelM;
+inline constexpr int kFpfhMaxNeighbors = 100;
+inline constexpr double kRansacDistanceM = 1.5 * kGlobalVoxelM;
+
+/// Our FPFH with the settings above on `threads` threads.
+inline registration::FpfhConfig fpfh_config(int threads) {
+    registration::FpfhConfig config;
+    config.radius_m = kFpfhRadiusM;
+    config.max_neighbors = kFpfhMaxNeighbors;
+    config.parallel = threads_config(threads);
+    return config;
+}
+
+/// Open3D's FPFH search with the same settings.
+inline open3d::geometry::KDTreeSearchParamHybrid open3d_fpfh_param() {
+    return open3d::geometry::KDTreeSearchParamHybrid(kFpfhRadiusM, kFpfhMaxNeighbors);
 }
 
 /// Registers a wall-clock, millisecond benchmark.

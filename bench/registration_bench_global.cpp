@@ -22,29 +22,12 @@ namespace {
 
 namespace o3reg = open3d::pipelines::registration;
 
-constexpr double kVoxelM = 0.05;
-constexpr double kFpfhRadiusM = 5.0 * kVoxelM;  // both: Open3D's and TEASER++'s examples
-constexpr int kFpfhMaxNeighbors = 100;
-constexpr double kRansacDistanceM = 1.5 * kVoxelM;  // Open3D's example: 0.075 m
-
 /// The downsampled pair with normals and both libraries' features (computed once, untimed).
 struct GlobalInputs {
     RegistrationPair pair;
     registration::FeatureMatrix source_fpfh, target_fpfh;
     std::shared_ptr<o3reg::Feature> o3d_source_fpfh, o3d_target_fpfh;
 };
-
-registration::FpfhConfig fpfh_config(int threads) {
-    registration::FpfhConfig config;
-    config.radius_m = kFpfhRadiusM;
-    config.max_neighbors = kFpfhMaxNeighbors;
-    config.parallel = threads_config(threads);
-    return config;
-}
-
-open3d::geometry::KDTreeSearchParamHybrid fpfh_param() {
-    return open3d::geometry::KDTreeSearchParamHybrid(kFpfhRadiusM, kFpfhMaxNeighbors);
-}
 
 void fpfh_ours(benchmark::State& state, const GlobalInputs* in, int threads) {
     for (auto _ : state) {
@@ -58,8 +41,8 @@ void fpfh_ours(benchmark::State& state, const GlobalInputs* in, int threads) {
 void fpfh_open3d(benchmark::State& state, const GlobalInputs* in, int threads) {
     omp_set_num_threads(threads);
     for (auto _ : state) {
-        auto s = o3reg::ComputeFPFHFeature(*in->pair.o3d_source, fpfh_param());
-        auto t = o3reg::ComputeFPFHFeature(*in->pair.o3d_target, fpfh_param());
+        auto s = o3reg::ComputeFPFHFeature(*in->pair.o3d_source, open3d_fpfh_param());
+        auto t = o3reg::ComputeFPFHFeature(*in->pair.o3d_target, open3d_fpfh_param());
         benchmark::DoNotOptimize(s->data_.data());
         benchmark::DoNotOptimize(t->data_.data());
     }
@@ -76,7 +59,7 @@ void global_ours(benchmark::State& state, const GlobalInputs* in, int threads) {
     registration::MatchConfig match;
     match.parallel = threads_config(threads);
     registration::RobustRegistrationConfig robust;
-    robust.noise_bound_m = kVoxelM;
+    robust.noise_bound_m = kGlobalVoxelM;
     robust.parallel = threads_config(threads);
     Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
     int successes = 0, runs = 0;
@@ -113,7 +96,7 @@ void global_open3d(benchmark::State& state, const GlobalInputs* in, bool mutual,
 }
 
 PointCloud prepare(const PointCloud& cloud) {
-    PointCloud down = voxel_downsample(remove_non_finite(cloud), kVoxelM);
+    PointCloud down = voxel_downsample(remove_non_finite(cloud), kGlobalVoxelM);
     down.normals.clear();
     NormalEstimationConfig normals;
     normals.num_neighbors = 30;
@@ -132,9 +115,9 @@ void register_global_benchmarks(const RegistrationPair& raw) {
     in->pair.o3d_target = to_open3d(in->pair.target);
     in->source_fpfh = registration::compute_fpfh(in->pair.source, fpfh_config(0));
     in->target_fpfh = registration::compute_fpfh(in->pair.target, fpfh_config(0));
-    in->o3d_source_fpfh = o3reg::ComputeFPFHFeature(*in->pair.o3d_source, fpfh_param());
-    in->o3d_target_fpfh = o3reg::ComputeFPFHFeature(*in->pair.o3d_target, fpfh_param());
-    std::printf("rgbd pair at %.2f m voxels: %zu source, %zu target points\n", kVoxelM,
+    in->o3d_source_fpfh = o3reg::ComputeFPFHFeature(*in->pair.o3d_source, open3d_fpfh_param());
+    in->o3d_target_fpfh = o3reg::ComputeFPFHFeature(*in->pair.o3d_target, open3d_fpfh_param());
+    std::printf("rgbd pair at %.2f m voxels: %zu source, %zu target points\n", kGlobalVoxelM,
                 in->pair.source.size(), in->pair.target.size());
     for (int t : kRegThreadCounts) {
         add_benchmark(fmt::format("registration_rgbd_fpfh/ours/{}thr", t), fpfh_ours, in, t);

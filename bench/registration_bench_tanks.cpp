@@ -41,11 +41,9 @@ namespace o3reg = open3d::pipelines::registration;
 
 constexpr int kTankPairs = 50;
 constexpr std::uint64_t kSeed = 5;
-constexpr double kVoxelM = 0.05, kIcpMaxDistanceM = 0.5;
+constexpr double kVoxelM = kGlobalVoxelM, kIcpMaxDistanceM = 0.5;
 constexpr double kGuessTransM = 0.2, kGuessRotRad = 10.0 * M_PI / 180.0;
 constexpr int kIcpMaxIterations = 30;
-constexpr double kFpfhRadiusM = 5.0 * kVoxelM, kRansacDistanceM = 1.5 * kVoxelM;
-constexpr int kFpfhMaxNeighbors = 100;
 
 /// One cloud on both sides, with both libraries' features when they are needed.
 struct Cloud {
@@ -65,16 +63,6 @@ struct TankPair {
     Eigen::Isometry3d T_guess = Eigen::Isometry3d::Identity();
 };
 
-registration::FpfhConfig fpfh_config(int threads) {
-    registration::FpfhConfig c;
-    c.radius_m = kFpfhRadiusM;
-    c.max_neighbors = kFpfhMaxNeighbors;
-    c.parallel = threads_config(threads);
-    return c;
-}
-
-const open3d::geometry::KDTreeSearchParamHybrid kO3dFpfhParam(kFpfhRadiusM, kFpfhMaxNeighbors);
-
 /// `points` (with normals) on both sides, with features when `features`.
 std::shared_ptr<const Cloud> make_cloud(PointCloud points, bool features) {
     auto c = std::make_shared<Cloud>();
@@ -82,7 +70,7 @@ std::shared_ptr<const Cloud> make_cloud(PointCloud points, bool features) {
     c->o3d = to_open3d(c->points);
     if (features) {
         c->fpfh = registration::compute_fpfh(c->points, fpfh_config(0));
-        c->o3d_fpfh = o3reg::ComputeFPFHFeature(*c->o3d, kO3dFpfhParam);
+        c->o3d_fpfh = o3reg::ComputeFPFHFeature(*c->o3d, open3d_fpfh_param());
     }
     return c;
 }
@@ -215,7 +203,7 @@ void fpfh_open3d(benchmark::State& state, TankScene scene, int threads) {
     omp_set_num_threads(threads);
     for (auto _ : state) {
         for (const TankPair& p : pairs) {
-            auto f = o3reg::ComputeFPFHFeature(*p.source->o3d, kO3dFpfhParam);
+            auto f = o3reg::ComputeFPFHFeature(*p.source->o3d, open3d_fpfh_param());
             benchmark::DoNotOptimize(f->data_.data());
         }
     }
