@@ -3,12 +3,12 @@
 
 #include <chrono>
 #include <cmath>
-#include <filesystem>
 
 #include <scantling/core/error.hpp>
 #include <scantling/core/point_cloud.hpp>
 #include <scantling/core/voxel_grid.hpp>
 #include <scantling/io/cloud_io.hpp>
+#include <scantling/io/file_path.hpp>
 
 #include "scantling/commands.hpp"
 
@@ -26,11 +26,8 @@ void check_output(const ConvertOptions& options) {
     if (options.ascii && format != io::CloudFormat::kPcd) {
         throw ConfigError("--ascii applies to .pcd output only, got '" + options.output + "'");
     }
-    const auto dir = std::filesystem::path(options.output).parent_path();
-    std::error_code ec;
-    if (!dir.empty() && !std::filesystem::is_directory(dir, ec)) {
-        throw FileError(options.output, "'" + dir.string() + "' is not an existing directory");
-    }
+    io::check_output_file(options.output);
+    io::ensure_output_distinct(options.output, {options.input});
 }
 
 void check_numbers(const ConvertOptions& options) {

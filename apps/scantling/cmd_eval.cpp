@@ -11,8 +11,9 @@
 
 #include <scantling/core/error.hpp>
 #include <scantling/core/trajectory_metrics.hpp>
-#include <scantling/io/atomic_file.hpp>
+#include <scantling/io/file_path.hpp>
 #include <scantling/io/kitti.hpp>
+#include <scantling/io/output_transaction.hpp>
 #include <scantling/io/svg_plot.hpp>
 #include <scantling/io/tum.hpp>
 
@@ -166,32 +167,31 @@ struct PlotFile {
     std::string svg;
 };
 
-/// Renders both plots; paths beside EST or in --plots.
-std::array<PlotFile, 2> render_plots(const EvalOptions& options, const Matched& m,
-                                     const TrajectoryMetrics& metrics) {
+/// <est-stem>_top.svg and <est-stem>_errors.svg, beside EST or in --plots.
+std::array<PlotFile, 2> plot_paths(const EvalOptions& options) {
     const fs::path dir =
         options.plots_dir ? fs::path(*options.plots_dir) : fs::path(options.estimate).parent_path();
     const std::string stem = fs::path(options.estimate).stem().string();
-    return {
-        PlotFile{(dir / (stem + "_top.svg")).string(), io::render_svg(top_view(m, metrics))},
-        PlotFile{(dir / (stem + "_errors.svg")).string(), io::render_svg(error_plot(m, metrics))}};
+    return {PlotFile{(dir / (stem + "_top.svg")).string(), ""},
+            PlotFile{(dir / (stem + "_errors.svg")).string(), ""}};
 }
 
+std::array<PlotFile, 2> render_plots(const EvalOptions& options, const Matched& m,
+                                     const TrajectoryMetrics& metrics) {
+    std::array<PlotFile, 2> plots = plot_paths(options);
+    plots[0].svg = io::render_svg(top_view(m, metrics));
+    plots[1].svg = io::render_svg(error_plot(m, metrics));
+    return plots;
+}
+
+/// Both plots or neither (nor a --plots folder created for them).
 void write_plots(const EvalOptions& options, const std::array<PlotFile, 2>& plots) {
-    if (options.plots_dir) {
-        std::error_code error;
-        fs::create_directories(*options.plots_dir, error);
-        if (error)
-            throw FileError(*options.plots_dir,
-                            "cannot create the plot folder: " + error.message());
+    io::OutputTransaction outputs;
+    if (options.plots_dir) outputs.create_folder(*options.plots_dir);
+    for (const PlotFile& plot : plots) {
+        outputs.write_stream(plot.path, [&](std::ostream& out) { out << plot.svg; });
     }
-    // Both temporaries exist before either is renamed: a folder that refuses one file refuses
-    // it before anything is committed.
-    io::AtomicFileWriter top(plots[0].path), errors(plots[1].path);
-    top.stream() << plots[0].svg;
-    errors.stream() << plots[1].svg;
-    top.commit();
-    errors.commit();
+    outputs.commit();
 }
 
 nlohmann::ordered_json number_or_null(double value) {
@@ -276,6 +276,11 @@ void run_eval(const EvalOptions& options, std::ostream& out) {
     if (!(options.max_time_difference_s >= 0.0) || !std::isfinite(options.max_time_difference_s)) {
         throw ConfigError(fmt::format("--max-dt = {}, expected a finite number of seconds >= 0",
                                       options.max_time_difference_s));
+    }
+    // Before anything is read: no plot may overwrite GT or EST (a GT named <est-stem>_top.svg).
+    for (const PlotFile& plot : plot_paths(options)) {
+        if (options.plots)
+            io::ensure_output_distinct(plot.path, {options.ground_truth, options.estimate});
     }
     const Matched matched = load_matched(options);
     const TrajectoryMetrics metrics = evaluate_trajectory(matched.gt, matched.est);

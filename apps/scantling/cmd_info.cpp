@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
+#include <vector>
 
 #include <scantling/core/error.hpp>
 #include <scantling/core/point_cloud.hpp>
@@ -26,27 +27,60 @@ std::string bounds_line(const Aabb& box) {
                        lo.z(), hi.x(), hi.y(), hi.z());
 }
 
-std::string cloud_report(const PointCloud& cloud) {
+struct FiniteBounds {
     Aabb box;
     std::size_t non_finite = 0;
-    for (const Eigen::Vector3d& p : cloud.points) {
-        // Organised clouds carry NaN placeholders: keep them out of the bounds, count them.
+};
+
+// Organised clouds carry NaN placeholders and a mesh file may hold NaN/inf vertices: keep them
+// out of the bounds and count them, the same way for clouds and meshes.
+FiniteBounds finite_bounds(const std::vector<Eigen::Vector3d>& points) {
+    FiniteBounds bounds;
+    for (const Eigen::Vector3d& p : points) {
         if (p.allFinite()) {
-            box.extend(p);
+            bounds.box.extend(p);
         } else {
-            ++non_finite;
+            ++bounds.non_finite;
         }
     }
+    return bounds;
+}
+
+std::string cloud_report(const PointCloud& cloud) {
+    const FiniteBounds bounds = finite_bounds(cloud.points);
     std::string text = fmt::format("points: {}\n", cloud.size());
     text += fmt::format("fields: {}\n", fmt::join(field_names(cloud), " "));
-    text += bounds_line(box);
-    if (non_finite > 0) text += fmt::format("non_finite: {}\n", non_finite);
+    text += bounds_line(bounds.box);
+    if (bounds.non_finite > 0) text += fmt::format("non_finite: {}\n", bounds.non_finite);
     return text;
 }
 
+bool has_finite_corners(const TriangleMesh& mesh, std::size_t t) {
+    const Eigen::Vector3i& tri = mesh.triangles[t];
+    return mesh.vertices[tri[0]].allFinite() && mesh.vertices[tri[1]].allFinite() &&
+           mesh.vertices[tri[2]].allFinite();
+}
+
+/// Triangles with a non-finite corner are left out of the area and counted.
 std::string mesh_report(const TriangleMesh& mesh) {
-    return fmt::format("vertices: {}\ntriangles: {}\n", mesh.num_vertices(), mesh.num_triangles()) +
-           bounds_line(compute_bounds(mesh)) + fmt::format("area_m2: {:.6f}\n", surface_area(mesh));
+    const FiniteBounds bounds = finite_bounds(mesh.vertices);
+    double area_m2 = 0.0;
+    std::size_t broken = 0;
+    for (std::size_t t = 0; t < mesh.num_triangles(); ++t) {
+        if (has_finite_corners(mesh, t)) {
+            area_m2 += triangle_area(mesh, t);
+        } else {
+            ++broken;
+        }
+    }
+    std::string text =
+        fmt::format("vertices: {}\ntriangles: {}\n", mesh.num_vertices(), mesh.num_triangles()) +
+        bounds_line(bounds.box) + fmt::format("area_m2: {:.6f}\n", area_m2);
+    if (bounds.non_finite > 0) {
+        text +=
+            fmt::format("non_finite: {}\nnon_finite_triangles: {}\n", bounds.non_finite, broken);
+    }
+    return text;
 }
 
 /// A PLY file is a mesh when it has faces, a cloud otherwise.

@@ -12,10 +12,12 @@
 
 #include <scantling/core/error.hpp>
 #include <scantling/core/se3.hpp>
+#include <scantling/core/text_escape.hpp>
 #include <scantling/core/trajectory_metrics.hpp>
 #include <scantling/io/atomic_file.hpp>
 #include <scantling/io/file_path.hpp>
 #include <scantling/io/kitti.hpp>
+#include <scantling/io/output_transaction.hpp>
 #include <scantling/io/recording.hpp>
 #include <scantling/io/sweep_source.hpp>
 #include <scantling/io/tum.hpp>
@@ -59,10 +61,22 @@ std::string sibling(const std::string& out, const std::string& suffix) {
     return (p.parent_path() / (p.stem().string() + suffix)).string();
 }
 
-void check_output_dir(const std::string& path) {
-    const fs::path parent = fs::path(path).parent_path();
-    if (!parent.empty() && !fs::is_directory(parent)) {
-        throw FileError(path, "its folder does not exist");
+/// The trajectory, the per-frame report and the ground truth beside them (when there is one).
+struct OutputPaths {
+    std::string trajectory, frames_csv, ground_truth;
+};
+
+OutputPaths output_paths(const OdometryOptions& options, const std::string& format) {
+    return {options.out, sibling(options.out, "_frames.csv"),
+            sibling(options.out, format == "tum" ? "_gt.tum" : "_gt.txt")};
+}
+
+/// Before the run: every output writable and none of them an input (or inside the input folder).
+void check_outputs(const OdometryOptions& options, const OutputPaths& paths) {
+    const std::vector<std::string> inputs = {options.input, options.config_path.value_or("")};
+    for (const std::string* path : {&paths.trajectory, &paths.frames_csv, &paths.ground_truth}) {
+        io::check_output_file(*path);
+        io::ensure_output_distinct(*path, inputs);
     }
 }
 
@@ -161,7 +175,8 @@ void run_odometry(const OdometryOptions& options, std::ostream& out) {
     if (options.max_frames && *options.max_frames == 0) {
         throw ConfigError("--max-frames = 0, expected >= 1");
     }
-    check_output_dir(options.out);
+    const OutputPaths paths = output_paths(options, format);
+    check_outputs(options, paths);
     io::SweepSourceOptions source_options;
     if (options.period_s) source_options.period_s = *options.period_s;
     const std::unique_ptr<io::SweepSource> source =
@@ -183,11 +198,14 @@ void run_odometry(const OdometryOptions& options, std::ostream& out) {
         if (r.status != odo::FrameStatus::kOk && r.status != odo::FrameStatus::kFirst &&
             r.status != odo::FrameStatus::kDegenerate) {
             if (options.progress) std::fputs("\n", stderr);
+            // File names and reader messages quote file bytes: escaped like every message.
             fmt::print(stderr, "warning: sweep {} ({}): {}: {}\n", r.index,
-                       source->file_of(r.index), odo::to_string(r.status), r.message);
+                       escape_control_characters(source->file_of(r.index)),
+                       odo::to_string(r.status), escape_control_characters(r.message));
         } else if (r.time_gap) {
             if (options.progress) std::fputs("\n", stderr);
-            fmt::print(stderr, "warning: sweep {}: {}\n", r.index, r.message);
+            fmt::print(stderr, "warning: sweep {}: {}\n", r.index,
+                       escape_control_characters(r.message));
         }
         if (options.progress && (done % 5 == 0 || done == n)) {
             draw_progress(done, n, std::chrono::duration<double>(Clock::now() - start).count());
@@ -215,16 +233,20 @@ void run_odometry(const OdometryOptions& options, std::ostream& out) {
         stamps.push_back(r.stamp_s);
         poses.push_back(r.T_odom_sensor);
     }
-    const std::string frames_path = sibling(options.out, "_frames.csv");
-    write_trajectory(options.out, format, stamps, poses);
-    write_frames_csv(frames_path, reports);
-    std::string gt_path;
+    // All three files or none: a failure on the last one leaves no trajectory either.
+    io::OutputTransaction outputs;
+    outputs.write(paths.trajectory,
+                  [&](const std::string& p) { write_trajectory(p, format, stamps, poses); });
+    outputs.write(paths.frames_csv, [&](const std::string& p) { write_frames_csv(p, reports); });
     if (ground_truth) {
-        gt_path = sibling(options.out, format == "tum" ? "_gt.tum" : "_gt.txt");
         const std::vector<Eigen::Isometry3d> gt(ground_truth->begin(),
                                                 ground_truth->begin() + static_cast<long>(n));
-        write_trajectory(gt_path, format, stamps, gt);
+        outputs.write(paths.ground_truth,
+                      [&](const std::string& p) { write_trajectory(p, format, stamps, gt); });
     }
+    outputs.commit();
+    const std::string& frames_path = paths.frames_csv;
+    const std::string gt_path = ground_truth ? paths.ground_truth : std::string();
 
     std::map<std::string, std::size_t> status_counts;
     std::vector<double> extract, reg, map;

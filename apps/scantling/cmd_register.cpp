@@ -14,6 +14,7 @@
 #include <scantling/core/voxel_grid.hpp>
 #include <scantling/io/atomic_file.hpp>
 #include <scantling/io/cloud_io.hpp>
+#include <scantling/io/file_path.hpp>
 #include <scantling/registration/icp.hpp>
 #include <scantling/registration/ransac_registration.hpp>
 #include <scantling/registration/robust_registration.hpp>
@@ -55,6 +56,10 @@ Method method_from_string(const std::string& name) {
 /// What every method reports, in the CLI's words.
 struct Outcome {
     Eigen::Isometry3d T_target_source = Eigen::Isometry3d::Identity();
+    /// The method's own test passed; otherwise nothing is written (the pose would be the
+    /// initial guess or a half-way step, indistinguishable from a result in the file).
+    bool converged = false;
+    std::string failure;  ///< why not, in the method's words
     std::string status;
     double fitness = 0.0;
     double rmse_m = 0.0;
@@ -81,6 +86,8 @@ void check_options(const RegisterOptions& o, Method method) {
     if (o.out.empty()) throw ConfigError("--out is required");
     if (!dir.empty() && !std::filesystem::is_directory(dir, ec))
         throw FileError(o.out, "'" + dir.string() + "' is not an existing directory");
+    io::check_output_file(o.out);
+    io::ensure_output_distinct(o.out, {o.source, o.target, o.init_path.value_or("")});
 }
 
 PointCloud load(const std::string& path, double voxel_m, int num_threads) {
@@ -95,6 +102,8 @@ PointCloud load(const std::string& path, double voxel_m, int num_threads) {
 
 Outcome from_registration(const reg::RegistrationResult& r) {
     Outcome o{.T_target_source = r.T_target_source,
+              .converged = r.converged,
+              .failure = fmt::format("{} after {} iterations", r.status, r.iterations),
               .status = r.converged ? fmt::format("converged ({} iterations)", r.iterations)
                                     : fmt::format("not converged: {} ({} iterations)", r.status,
                                                   r.iterations),
@@ -132,7 +141,16 @@ Outcome run_stein(const PointCloud& src, PointCloud tgt, const Eigen::Isometry3d
                                .parallel = {.num_threads = o.num_threads}});
     }
     const reg::SteinIcpResult r = reg::stein_icp(src, tgt, init, config);
+    // Stein-ICP has no convergence test of its own (it runs a fixed number of steps): its mode
+    // is unsupported when fewer source points lie within reach of the target than ICP needs to
+    // take a step at all.
+    const auto supporting = static_cast<std::size_t>(std::llround(r.fitness * src.size()));
+    const auto needed = static_cast<std::size_t>(reg::IcpConfig{}.min_correspondences);
     return {.T_target_source = r.T_target_source,
+            .converged = supporting >= needed,
+            .failure = fmt::format("{} source points within {} m of the target at the mode, "
+                                   "expected at least {}",
+                                   supporting, config.max_correspondence_distance_m, needed),
             .status = fmt::format("particles: {}, modes: {}", r.particles.size(), r.num_modes),
             .fitness = r.fitness,
             .rmse_m = r.rmse_m,
@@ -222,6 +240,34 @@ void print_report(const Outcome& r, double ms, std::ostream& out) {
     }
 }
 
+/// What to try after `method` failed, with the settings it ran with.
+std::string retry_hint(Method method, double voxel_m, const RegisterOptions& o) {
+    if (is_global(method)) {
+        return fmt::format(
+            "check that the clouds overlap, or try another --voxel (now {} m: larger gives more "
+            "distinctive features, smaller keeps thin structures) or the other global method",
+            voxel_m);
+    }
+    const double reach_m = o.max_distance_m.value_or(
+        method == Method::kStein ? reg::SteinIcpConfig{}.max_correspondence_distance_m
+                                 : reg::IcpConfig{}.max_correspondence_distance_m);
+    return fmt::format(
+        "try a closer --init, a larger --max-distance (now {} m) or a global method "
+        "(fpfh-teaser, fpfh-ransac)",
+        reach_m);
+}
+
+/// Refuses a result that must not be written: the method's test failed, or the pose is not
+/// finite (which no test should let through, but a file of NaN is worse than no file).
+void check_converged(const Outcome& r, Method method, double voxel_m, const RegisterOptions& o) {
+    if (r.converged && r.T_target_source.matrix().allFinite()) return;
+    const std::string why = r.converged ? "the pose is not finite" : r.failure;
+    throw NotConvergedError(fmt::format(
+        "register --method {}: did not converge ({}; fitness {:.3f}, rmse {:.3g} m), so {} was "
+        "not written; {}",
+        o.method, why, r.fitness, r.rmse_m, o.out, retry_hint(method, voxel_m, o)));
+}
+
 }  // namespace
 
 void run_register(const RegisterOptions& o, std::ostream& out) {
@@ -258,6 +304,7 @@ void run_register(const RegisterOptions& o, std::ostream& out) {
             break;
     }
     const double ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+    check_converged(r, method, voxel, o);
     io::write_file_atomically(
         o.out, [&](std::ostream& file) { file << matrix_text(r.T_target_source.matrix()); });
     print_report(r, ms, out);

@@ -7,10 +7,13 @@
 #include <string>
 
 #include <scantling/core/error.hpp>
+#include <scantling/io/file_path.hpp>
 #include <scantling/sim/scenario.hpp>
+#include <scantling/sim/scenario_estimate.hpp>
 #include <scantling/sim/scenario_runner.hpp>
 
 #include "scantling/commands.hpp"
+#include "scantling/interrupt.hpp"
 
 namespace scantling::app {
 namespace {
@@ -40,13 +43,28 @@ std::string summary_text(const sim::Scenario& scenario, const sim::ScenarioRunRe
 }  // namespace
 
 void run_sim(const SimOptions& options, std::ostream& out) {
+    if (options.out.empty()) throw ConfigError("--out is required");
+    io::ensure_output_distinct(options.out, {options.scenario});
     sim::Scenario scenario = sim::load_scenario(options.scenario);
     if (options.seed) scenario.seed = *options.seed;
     if (options.num_threads != 0) scenario.parallel.num_threads = options.num_threads;
+    // Runs over the hard limit were refused by validation; a large one is announced up front.
+    const sim::RecordingEstimate estimate = sim::estimate_recording(scenario);
+    if (estimate.total_bytes > sim::kLargeRecordingBytes)
+        fmt::print(stderr, "note: {}\n", estimate.describe());
+    // From here on Ctrl-C stops the run between two ticks and removes the partial recording.
+    const InterruptScope interrupt;
     sim::ScenarioRunOptions run_options;
     run_options.overwrite = options.force;
+    run_options.stop_requested = [&interrupt] { return interrupt.requested(); };
     if (options.progress) run_options.progress = draw_progress;
-    const sim::ScenarioRunResult result = sim::run_scenario(scenario, options.out, run_options);
+    sim::ScenarioRunResult result;
+    try {
+        result = sim::run_scenario(scenario, options.out, run_options);
+    } catch (const sim::ScenarioInterrupted& e) {
+        if (options.progress) std::fputs("\n", stderr);
+        exit_interrupted(e.what(), interrupt.signal_number());
+    }
     if (options.progress) std::fputs("\n", stderr);
     out << summary_text(scenario, result);
 }

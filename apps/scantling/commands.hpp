@@ -29,7 +29,7 @@ struct SimOptions {
     std::string scenario;               ///< scenario YAML
     std::string out;                    ///< recording directory
     std::optional<std::uint64_t> seed;  ///< overrides the scenario's seed
-    bool force = false;                 ///< write into a non-empty directory (replaces a recording)
+    bool force = false;                 ///< replace a recording folder once the new one is complete
     bool progress = true;               ///< progress line on stderr
     int num_threads = 0;                ///< 0 = the scenario's setting
 };
@@ -77,7 +77,10 @@ Eigen::Isometry3d read_transform_file(const std::string& path);
 /// `scantling register SRC TGT --method M --out T.txt`: registers SRC to TGT, writes the 4×4
 /// T_target_source (full precision) to `out` and prints it with fitness, RMSE, status, time and
 /// the 6×6 covariance where the method gives one. Options, --init and the output directory are
-/// checked before the clouds are read; nothing is written on failure.
+/// checked before the clouds are read; nothing is written on failure. A registration that did
+/// not converge (the method's converged flag; Stein-ICP: fewer source points within reach of
+/// the target at its mode than ICP's min_correspondences) throws NotConvergedError naming the
+/// method, the reason, fitness and RMSE, and what to try, and writes nothing.
 void run_register(const RegisterOptions& options, std::ostream& out);
 
 struct OdometryOptions {

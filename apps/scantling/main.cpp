@@ -1,8 +1,6 @@
 // `scantling`: command-line tools over the scantling libraries. The only file with CLI11.
 // Errors: exactly one line "scantling: error: <message>" on stderr and exit code 2.
 #include <fmt/format.h>
-#include <spdlog/sinks/stdout_color_sinks.h>
-#include <spdlog/spdlog.h>
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
@@ -10,9 +8,14 @@
 #include <cstdio>
 #include <exception>
 #include <iostream>
+#include <limits>
 #include <string>
 
+#include <scantling/core/text_escape.hpp>
+
 #include "scantling/commands.hpp"
+#include "scantling/option_values.hpp"
+#include "scantling/terminal_output.hpp"
 
 namespace {
 
@@ -61,15 +64,34 @@ struct CommandLine {
     std::size_t odo_max_frames = 0;
 };
 
+/// One line, escaped: messages quote file names and file contents (terminal_output.hpp).
 int report_error(std::string message) {
     std::replace(message.begin(), message.end(), '\n', ' ');
-    fmt::print(stderr, "scantling: error: {}\n", message);
+    fmt::print(stderr, "scantling: error: {}\n", scantling::escape_control_characters(message));
     return kExitError;
+}
+
+/// More worker threads than any machine this runs on has: a larger --threads is a typo.
+constexpr std::uint64_t kMaxThreads = 1024;
+
+/// Integer options: a decimal number in [min, max], checked on the text (option_values.hpp).
+CLI::Validator whole_number_in(std::uint64_t min, std::uint64_t max) {
+    return {[min, max](std::string& text) {
+                return scantling::app::check_decimal_integer(text, min, max);
+            },
+            "", ""};
+}
+
+/// Real options: finite and > 0 or >= 0 (CLI11 alone lets "nan" and "inf" through).
+CLI::Validator finite_number(scantling::app::LowerBound bound) {
+    return {[bound](std::string& text) { return scantling::app::check_finite_number(text, bound); },
+            "", ""};
 }
 
 void add_threads_option(CLI::App& app, CommandLine& cl) {
     app.add_option("--threads", cl.num_threads, "Worker threads (0 = all hardware threads)")
-        ->type_name("N");
+        ->type_name("N")
+        ->transform(whole_number_in(0, kMaxThreads));
 }
 
 void add_in_out(CLI::App& cmd, CommandLine& cl) {
@@ -92,10 +114,13 @@ void define_sim(CLI::App& app, CommandLine& cl) {
     cl.sim_cmd->add_option("--out", cl.sim.out, "Recording directory (created)")
         ->required()
         ->type_name("DIR");
-    cl.sim_seed =
-        cl.sim_cmd->add_option("--seed", cl.seed, "Overrides the scenario's seed")->type_name("N");
-    cl.sim_cmd->add_flag("--force", cl.sim.force,
-                         "Write into a non-empty directory (replaces a recording there)");
+    cl.sim_seed = cl.sim_cmd->add_option("--seed", cl.seed, "Overrides the scenario's seed")
+                      ->type_name("N")
+                      ->transform(whole_number_in(0, std::numeric_limits<std::uint64_t>::max()));
+    cl.sim_cmd->add_flag(
+        "--force", cl.sim.force,
+        "Replace an existing recording, only once the new one is complete (a folder holding "
+        "anything else is refused)");
     cl.sim_cmd->add_flag("--no-progress", cl.no_progress, "No progress line on stderr");
 }
 
@@ -118,12 +143,14 @@ void define_register(CLI::App& app, CommandLine& cl) {
     cl.register_voxel = cmd->add_option("--voxel", cl.voxel_size_m,
                                         "Voxel edge in metres, >= 0 (0 = none; default 0.1 for "
                                         "local methods, 0.05 for global ones)")
-                            ->type_name("SIZE_M");
+                            ->type_name("SIZE_M")
+                            ->check(finite_number(scantling::app::LowerBound::kNonNegative));
     cl.register_max_distance =
         cmd->add_option("--max-distance", cl.max_distance_m,
                         "Correspondence distance in metres (default: ICP 1, stein 0.5, "
                         "refinement after a global method 2 voxels)")
-            ->type_name("M");
+            ->type_name("M")
+            ->check(finite_number(scantling::app::LowerBound::kPositive));
     cmd->add_option("--back-faces", cl.reg.back_faces,
                     "ICP pairs with target points facing away from the sensor, by the target "
                     "file's normals: keep, prefer_front (default: the nearest front face among "
@@ -150,7 +177,8 @@ void define_eval(CLI::App& app, CommandLine& cl) {
                          ->type_name("F");
     cmd->add_option("--max-dt", cl.eval.max_time_difference_s,
                     "TUM: largest time difference of a matched pose, seconds (default 0.02)")
-        ->type_name("S");
+        ->type_name("S")
+        ->check(finite_number(scantling::app::LowerBound::kNonNegative));
     cmd->add_flag("--json", cl.eval.json, "Print one JSON object instead of key: value lines");
     cl.eval_plots = cmd->add_option("--plots", cl.eval_plots_dir,
                                     "Folder for <est-stem>_top.svg and <est-stem>_errors.svg "
@@ -182,10 +210,12 @@ void define_odometry(CLI::App& app, CommandLine& cl) {
     cl.odometry_period = cmd->add_option("--period", cl.odo_period_s,
                                          "Seconds between sweeps for inputs without stamps "
                                          "(default 0.1)")
-                             ->type_name("S");
+                             ->type_name("S")
+                             ->check(finite_number(scantling::app::LowerBound::kPositive));
     cl.odometry_max_frames =
         cmd->add_option("--max-frames", cl.odo_max_frames, "Only the first N sweeps")
-            ->type_name("N");
+            ->type_name("N")
+            ->transform(whole_number_in(1, std::numeric_limits<std::size_t>::max()));
     cmd->add_option("--method", cl.odo.method,
                     "liodom, or icp: the scan-to-scan point-to-plane baseline (same range gate "
                     "and voxel as the preset)")
@@ -223,27 +253,22 @@ void define_commands(CLI::App& app, CommandLine& cl) {
     cl.convert_voxel = cl.convert_cmd
                            ->add_option("--voxel", cl.voxel_size_m,
                                         "Voxel-downsample first: voxel edge in metres (> 0)")
-                           ->type_name("SIZE_M");
+                           ->type_name("SIZE_M")
+                           ->check(finite_number(scantling::app::LowerBound::kPositive));
 
     cl.downsample_cmd = app.add_subcommand(
         "downsample", "Voxel-grid downsample a cloud (one centroid per occupied voxel)");
     add_in_out(*cl.downsample_cmd, cl);
     cl.downsample_cmd->add_option("--voxel", cl.voxel_size_m, "Voxel edge in metres (> 0)")
         ->required()
-        ->type_name("SIZE_M");
+        ->type_name("SIZE_M")
+        ->check(finite_number(scantling::app::LowerBound::kPositive));
     define_sim(app, cl);
     define_register(app, cl);
     define_eval(app, cl);
     define_odometry(app, cl);
     // Set last: subcommands created after it would inherit it.
     app.footer("Run 'scantling SUBCOMMAND --help' for the options of a subcommand.");
-}
-
-void set_up_logging(bool verbose) {
-    // Libraries never print; the app logs to stderr so that stdout stays the report.
-    auto logger = spdlog::stderr_color_mt("scantling");
-    logger->set_level(verbose ? spdlog::level::debug : spdlog::level::warn);
-    spdlog::set_default_logger(logger);
 }
 
 void run(CommandLine& cl) {
@@ -302,7 +327,8 @@ int run_main(int argc, char** argv) {
     } catch (const CLI::Error& e) {
         return report_error(e.what() + kSeeHelp);
     }
-    set_up_logging(cl.verbose);
+    scantling::app::set_up_logging(cl.verbose);
+    const scantling::app::EscapedOutput escaped_stdout(std::cout);
     run(cl);
     return 0;
 }

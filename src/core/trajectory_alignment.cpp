@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
@@ -17,6 +18,20 @@ namespace {
 // Second singular value of the cross-covariance below this fraction of the first: the points
 // are collinear to within rounding (an exact line gives ~1e-16), the rotation is undetermined.
 constexpr double kCollinearRatio = 1e-12;
+
+/// The identity maximises tr(R · cross) over SO(3) exactly when `cross` is symmetric and its
+/// two smallest eigenvalues sum to >= 0 (Umeyama's lemma: the optimum is σ1 + σ2 ± σ3): so for
+/// positions equal to the ground truth, whose cross-covariance is their scatter matrix. The SVD
+/// would return I + O(ε) there and turn an exact match into errors of ~1e-14 m. The tolerance
+/// (relative to the largest eigenvalue) absorbs the rounding of a rank-deficient scatter
+/// matrix (collinear or coplanar positions), where the rotation is not determined anyway.
+bool identity_is_optimal(const Eigen::Matrix3d& cross) {
+    if (cross != cross.transpose()) return false;
+    const Eigen::Vector3d eigenvalues =
+        Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(cross, Eigen::EigenvaluesOnly)
+            .eigenvalues();  // ascending
+    return eigenvalues(0) + eigenvalues(1) >= -kCollinearRatio * std::abs(eigenvalues(2));
+}
 
 struct UmeyamaSolution {
     Eigen::Isometry3d T_gt_est = Eigen::Isometry3d::Identity();
@@ -39,6 +54,10 @@ UmeyamaSolution solve_umeyama(std::size_t n, EstAt est_at, GtAt gt_at) {
         cross += (gt_at(i) - mean_gt) * (est_at(i) - mean_est).transpose();
     }
     const Eigen::JacobiSVD<Eigen::Matrix3d> svd(cross, Eigen::ComputeFullU | Eigen::ComputeFullV);
+    if (identity_is_optimal(cross)) {
+        return {make_isometry(Eigen::Matrix3d::Identity(), mean_gt - mean_est),
+                svd.singularValues()};
+    }
     Eigen::Matrix3d S = Eigen::Matrix3d::Identity();
     // A reflection would fit better when det(U V^T) < 0; flip the weakest axis instead.
     if (svd.matrixU().determinant() * svd.matrixV().determinant() < 0.0) S(2, 2) = -1.0;

@@ -1,4 +1,5 @@
 #include <scantling/core/error.hpp>
+#include <scantling/core/se3.hpp>
 #include <scantling/core/trajectory_metrics.hpp>
 
 #include <fmt/format.h>
@@ -16,19 +17,51 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kDegPerRad = 180.0 / std::numbers::pi;
 
-/// The devkit's pose_error: how far the estimated motion from i to j is from the true one.
-Eigen::Isometry3d relative_error(std::span<const Eigen::Isometry3d> gt,
-                                 std::span<const Eigen::Isometry3d> est, std::size_t i,
-                                 std::size_t j) {
-    const Eigen::Isometry3d delta_gt = gt[i].inverse() * gt[j];
-    const Eigen::Isometry3d delta_est = est[i].inverse() * est[j];
-    return delta_est.inverse() * delta_gt;
+/// A rotation further than this from orthonormal (max |RᵀR − I|) is not a rounded rotation but
+/// no rotation at all; the pose readers (io/kitti.hpp, io/tum.hpp) accept the same.
+constexpr double kMaxOrthonormalityError = 1e-3;
+
+/// `poses` with each rotation projected onto SO(3). Pose files print 6–9 digits, so RᵀR = I
+/// only to ~1e-6: the transpose used as the inverse in a relative motion would then leave an
+/// error of that size, which the rotation angle turns into ~1e-3 rad (the square root), even
+/// between a trajectory and itself. After the projection the transpose is the true inverse.
+/// Throws InputError naming `what`, `which` and the pose for a rotation that is not one.
+std::vector<Eigen::Isometry3d> rigid_poses(std::span<const Eigen::Isometry3d> poses,
+                                           std::string_view what, std::string_view which) {
+    std::vector<Eigen::Isometry3d> rigid(poses.begin(), poses.end());
+    for (std::size_t i = 0; i < rigid.size(); ++i) {
+        const Eigen::Matrix3d R = rigid[i].linear();
+        const double error =
+            (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
+        if (!(error <= kMaxOrthonormalityError) || !(R.determinant() > 0.0)) {
+            throw InputError(fmt::format(
+                "{}: {} pose {} has no rotation (max |RᵀR − I| = {:.3g}, det R = {:.3g}; expected "
+                "orthonormal within {:g}, det > 0)",
+                what, which, i, error, R.determinant(), kMaxOrthonormalityError));
+        }
+        rigid[i].linear() = orthonormalize(R);
+    }
+    return rigid;
 }
 
-/// The devkit's rotationError: acos of the clamped ½(trace − 1). Kept instead of the atan2
-/// form so that the figures are the devkit's (they differ only below ~1e-7 rad).
-double devkit_rotation_angle_rad(const Eigen::Matrix3d& R) {
-    return std::acos(std::clamp(0.5 * (R.trace() - 1.0), -1.0, 1.0));
+/// The devkit's pose_error E = (T_est_i⁻¹ T_est_j)⁻¹ (T_gt_i⁻¹ T_gt_j), as |translation of E|
+/// and the rotation angle of E.
+struct MotionError {
+    double translation_m = 0.0;
+    double rotation_rad = 0.0;
+};
+
+/// E from the difference of the two relative motions (rigid poses): |t_E| = |R_estᵀ (t_gt −
+/// t_est)| = |t_gt − t_est|, and the angle of R_E = R_estᵀ R_gt is 2 asin(|R_gt − R_est|_F / √8).
+/// Both equal the devkit's figures (acos(½(trace R_E − 1)) for the angle), but equal motions
+/// give exact zeros, and small angles keep their digits where acos near 1 loses half of them.
+MotionError motion_error(std::span<const Eigen::Isometry3d> gt,
+                         std::span<const Eigen::Isometry3d> est, std::size_t i, std::size_t j) {
+    const Eigen::Isometry3d delta_gt = gt[i].inverse() * gt[j];
+    const Eigen::Isometry3d delta_est = est[i].inverse() * est[j];
+    const double chord = (delta_gt.linear() - delta_est.linear()).norm() / std::sqrt(8.0);
+    return {(delta_gt.translation() - delta_est.translation()).norm(),
+            2.0 * std::asin(std::min(chord, 1.0))};
 }
 
 struct SegmentSums {
@@ -74,11 +107,13 @@ void TrajectoryMetricsConfig::validate(std::string_view prefix) const {
     rpe.validate(fmt::format("{}.rpe", prefix));
 }
 
-KittiMetrics kitti_metrics(std::span<const Eigen::Isometry3d> gt,
-                           std::span<const Eigen::Isometry3d> est,
+KittiMetrics kitti_metrics(std::span<const Eigen::Isometry3d> gt_in,
+                           std::span<const Eigen::Isometry3d> est_in,
                            const KittiMetricConfig& config) {
     config.validate();
-    detail::check_matched_trajectories(gt, est, "kitti_metrics");
+    detail::check_matched_trajectories(gt_in, est_in, "kitti_metrics");
+    const auto gt = rigid_poses(gt_in, "kitti_metrics", "ground-truth");
+    const auto est = rigid_poses(est_in, "kitti_metrics", "estimated");
     const std::vector<double> dist = cumulative_distances_m(gt);
     const auto& lengths = config.segment_lengths_m;
     std::vector<SegmentSums> sums(lengths.size());
@@ -89,10 +124,10 @@ KittiMetrics kitti_metrics(std::span<const Eigen::Isometry3d> gt,
                                                   dist.end(), dist[first] + lengths[k]);
             if (last_it == dist.end()) continue;
             const auto last = static_cast<std::size_t>(last_it - dist.begin());
-            const Eigen::Isometry3d error = relative_error(gt, est, first, last);
+            const MotionError error = motion_error(gt, est, first, last);
             ++sums[k].count;
-            sums[k].t_err_per_m += error.translation().norm() / lengths[k];
-            sums[k].r_err_per_m += devkit_rotation_angle_rad(error.linear()) / lengths[k];
+            sums[k].t_err_per_m += error.translation_m / lengths[k];
+            sums[k].r_err_per_m += error.rotation_rad / lengths[k];
         }
     }
     KittiMetrics metrics;
@@ -115,10 +150,12 @@ KittiMetrics kitti_metrics(std::span<const Eigen::Isometry3d> gt,
     return metrics;
 }
 
-RpeResult relative_pose_error(std::span<const Eigen::Isometry3d> gt,
-                              std::span<const Eigen::Isometry3d> est, const RpeConfig& config) {
+RpeResult relative_pose_error(std::span<const Eigen::Isometry3d> gt_in,
+                              std::span<const Eigen::Isometry3d> est_in, const RpeConfig& config) {
     config.validate();
-    detail::check_matched_trajectories(gt, est, "relative_pose_error");
+    detail::check_matched_trajectories(gt_in, est_in, "relative_pose_error");
+    const auto gt = rigid_poses(gt_in, "relative_pose_error", "ground-truth");
+    const auto est = rigid_poses(est_in, "relative_pose_error", "estimated");
     const std::vector<double> dist = cumulative_distances_m(gt);
     RpeResult result;
     result.delta_m = config.delta_m;
@@ -127,12 +164,12 @@ RpeResult relative_pose_error(std::span<const Eigen::Isometry3d> gt,
         const auto j_it = std::lower_bound(dist.begin() + static_cast<std::ptrdiff_t>(i),
                                            dist.end(), dist[i] + config.delta_m);
         if (j_it == dist.end()) break;  // later starts are even shorter of the end
-        const Eigen::Isometry3d error =
-            relative_error(gt, est, i, static_cast<std::size_t>(j_it - dist.begin()));
-        const double t = error.translation().norm();
+        const MotionError error =
+            motion_error(gt, est, i, static_cast<std::size_t>(j_it - dist.begin()));
+        const double t = error.translation_m;
         sum_sq += t * t;
         sum += t;
-        sum_rot_rad += devkit_rotation_angle_rad(error.linear());
+        sum_rot_rad += error.rotation_rad;
         ++result.num_pairs;
     }
     const double n = result.num_pairs > 0 ? static_cast<double>(result.num_pairs) : kNaN;

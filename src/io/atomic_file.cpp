@@ -1,25 +1,15 @@
 #include <scantling/core/error.hpp>
 #include <scantling/io/atomic_file.hpp>
+#include <scantling/io/file_path.hpp>
 
-#include <unistd.h>
-
-#include <atomic>
-#include <cerrno>
 #include <filesystem>
 #include <system_error>
 
 namespace scantling::io {
 namespace {
 
-std::string os_reason(int error_number) {
-    return std::error_code(error_number, std::generic_category()).message();
-}
-
-// pid + process-wide counter: unique across processes and across writers in this process.
-std::string make_temporary_path(const std::string& path) {
-    static std::atomic<std::uint64_t> counter{0};
-    return path + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
-}
+// A temporary left by a killed process whose pid was reused is skipped, not overwritten.
+constexpr int kCreateAttempts = 16;
 
 void remove_quietly(const std::string& path) {
     std::error_code ignored;
@@ -28,46 +18,47 @@ void remove_quietly(const std::string& path) {
 
 }  // namespace
 
-AtomicFileWriter::AtomicFileWriter(std::string path)
-    : path_(std::move(path)), temporary_path_(make_temporary_path(path_)) {
-    if (std::filesystem::is_directory(path_)) {
+AtomicFileWriter::AtomicFileWriter(std::string path) : path_(std::move(path)) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path_, ec)) {
         throw FileError(path_, "cannot write: the path is a directory");
     }
-    errno = 0;
-    out_.open(temporary_path_, std::ios::binary | std::ios::trunc);
-    if (!out_) {
-        const int error_number = errno;
-        remove_quietly(temporary_path_);
-        throw FileError(path_, "cannot create temporary file " + temporary_path_ + ": " +
-                                   (error_number ? os_reason(error_number) : "unknown error"));
+    for (int attempt = 0; attempt < kCreateAttempts; ++attempt) {
+        temporary_path_ = temporary_sibling(path_, "tmp");
+        out_ = std::make_unique<CheckedOutputFile>(temporary_path_, /*exclusive=*/true);
+        if (out_->error() != std::errc::file_exists) break;
+    }
+    if (const std::error_code error = out_->error()) {
+        out_.reset();
+        throw FileError(path_,
+                        "cannot create temporary file " + temporary_path_ + ": " + error.message());
     }
 }
 
 AtomicFileWriter::~AtomicFileWriter() {
-    if (committed_) return;
-    out_.close();
+    if (finished_) return;
+    out_->close();
     remove_quietly(temporary_path_);
 }
 
 void AtomicFileWriter::commit() {
-    if (committed_) throw FileError(path_, "commit() called twice");
-    errno = 0;
-    out_.flush();
-    const bool write_ok = static_cast<bool>(out_);
-    const int error_number = errno;
-    out_.close();
-    if (!write_ok || out_.fail()) {
+    if (finished_) throw FileError(path_, "commit() called twice");
+    const bool stream_ok = static_cast<bool>(out_->stream());
+    const std::error_code error = out_->close();
+    if (error || !stream_ok) {
         remove_quietly(temporary_path_);
-        throw FileError(
-            path_, "write failed: " + (error_number ? os_reason(error_number) : "stream error"));
+        finished_ = true;  // the temporary is gone: nothing left for the destructor
+        throw FileError(path_,
+                        "write failed: " + (error ? error.message() : std::string("stream error")));
     }
     std::error_code ec;
     std::filesystem::rename(temporary_path_, path_, ec);
     if (ec) {
         remove_quietly(temporary_path_);
+        finished_ = true;
         throw FileError(path_, "cannot rename " + temporary_path_ + " over it: " + ec.message());
     }
-    committed_ = true;
+    finished_ = true;
 }
 
 void write_file_atomically(const std::string& path,

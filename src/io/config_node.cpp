@@ -2,9 +2,12 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
+#include <optional>
+#include <string>
+#include <system_error>
 
 #include <scantling/core/error.hpp>
 
@@ -24,57 +27,121 @@ void set_position(ConfigNode& node, const YAML::Mark& mark) {
     node.column = location.column.value_or(0);
 }
 
-/// Deeper than any config; also stops a recursive alias ("a: &x [*x]") from recursing forever.
-constexpr int kMaxDepth = 64;
-
-ConfigNode convert(const YAML::Node& yaml, const std::string& file, int depth);
-
-void convert_map(const YAML::Node& yaml, const std::string& file, int depth, ConfigNode& node) {
-    for (const auto& entry : yaml) {
-        const YAML::Mark key_mark = entry.first.Mark();
-        if (!entry.first.IsScalar()) {
-            throw ParseError(file, location_of(key_mark), "map keys must be plain scalars");
-        }
-        const std::string key = entry.first.Scalar();
-        if (node.find(key) != nullptr) {
-            throw ParseError(file, location_of(key_mark), "duplicate key '" + key + "'");
-        }
-        ConfigNode value = convert(entry.second, file, depth + 1);
-        // The key's position is what a reader looks for, and null values have no mark.
-        set_position(value, key_mark);
-        node.map.emplace_back(key, std::move(value));
-    }
+/// "4 MiB" for a whole number of MiB, else the bytes.
+std::string size_text(std::size_t bytes) {
+    constexpr std::size_t kMiB = std::size_t{1} << 20;
+    if (bytes % kMiB == 0) return std::to_string(bytes / kMiB) + " MiB";
+    return std::to_string(bytes) + " bytes";
 }
 
-ConfigNode convert(const YAML::Node& yaml, const std::string& file, int depth) {
-    if (depth > kMaxDepth) {
-        throw ParseError(
-            file, location_of(yaml.Mark()),
-            "nesting deeper than " + std::to_string(kMaxDepth) + " levels (a recursive alias?)");
+/// `bytes`: the size when known (a file that grows while read is only known to be larger).
+[[noreturn]] void refuse_size(const std::string& file, std::optional<std::uintmax_t> bytes,
+                              const YamlLimits& limits) {
+    const std::string size = bytes ? std::to_string(*bytes) + " bytes" : "the text";
+    throw ParseError(file, FileLocation{},
+                     size + " is more than the " + size_text(limits.max_bytes) +
+                         " a YAML config or scenario may have; refusing to parse it");
+}
+
+/// yaml-cpp's message, except for its nesting guard: its parser recurses once per level and
+/// stops at 2000 levels (before the stack runs out) with the bare message "bad file".
+std::string yaml_cpp_message(const YAML::Exception& e) {
+    if (e.msg != YAML::ErrorMsg::BAD_FILE) return e.msg;
+    return "nesting deeper than 2000 levels (yaml-cpp's limit; a config nests a few levels)";
+}
+
+/// Converts a yaml-cpp tree into ConfigNodes, expanding aliases, within `limits`: the node
+/// count is checked before each node is made, so memory stays bounded by max_nodes.
+class Converter {
+  public:
+    Converter(const std::string& file, const YamlLimits& limits) : file_(file), limits_(limits) {}
+
+    ConfigNode convert(const YAML::Node& yaml, int depth) {
+        count(yaml, depth);
+        ConfigNode node;
+        node.file = file_;
+        set_position(node, yaml.Mark());
+        switch (yaml.Type()) {
+            case YAML::NodeType::Scalar:
+                node.kind = ConfigNode::Kind::kScalar;
+                node.scalar = yaml.Scalar();
+                break;
+            case YAML::NodeType::Sequence:
+                node.kind = ConfigNode::Kind::kSequence;
+                for (const auto& item : yaml) node.sequence.push_back(convert(item, depth + 1));
+                break;
+            case YAML::NodeType::Map:
+                node.kind = ConfigNode::Kind::kMap;
+                convert_map(yaml, depth, node);
+                break;
+            default:
+                node.kind = ConfigNode::Kind::kNull;
+        }
+        return node;
     }
-    ConfigNode node;
-    node.file = file;
-    set_position(node, yaml.Mark());
-    switch (yaml.Type()) {
-        case YAML::NodeType::Scalar:
-            node.kind = ConfigNode::Kind::kScalar;
-            node.scalar = yaml.Scalar();
-            break;
-        case YAML::NodeType::Sequence:
-            node.kind = ConfigNode::Kind::kSequence;
-            for (const auto& item : yaml) node.sequence.push_back(convert(item, file, depth + 1));
-            break;
-        case YAML::NodeType::Map:
-            node.kind = ConfigNode::Kind::kMap;
-            convert_map(yaml, file, depth, node);
-            break;
-        default:
-            node.kind = ConfigNode::Kind::kNull;
+
+  private:
+    void count(const YAML::Node& yaml, int depth) {
+        if (depth > limits_.max_depth) {
+            throw ParseError(file_, location_of(yaml.Mark()),
+                             "nesting deeper than " + std::to_string(limits_.max_depth) +
+                                 " levels (a recursive alias?)");
+        }
+        if (++nodes_ > limits_.max_nodes) {
+            throw ParseError(file_, location_of(yaml.Mark()),
+                             "the document expands to more than " +
+                                 std::to_string(limits_.max_nodes) +
+                                 " nodes (each use of an alias counts its whole subtree); "
+                                 "refusing a possible alias bomb");
+        }
     }
-    return node;
+
+    void convert_map(const YAML::Node& yaml, int depth, ConfigNode& node) {
+        for (const auto& entry : yaml) {
+            const YAML::Mark key_mark = entry.first.Mark();
+            if (!entry.first.IsScalar()) {
+                throw ParseError(file_, location_of(key_mark), "map keys must be plain scalars");
+            }
+            const std::string key = entry.first.Scalar();
+            if (node.find(key) != nullptr) {
+                throw ParseError(file_, location_of(key_mark), "duplicate key '" + key + "'");
+            }
+            ConfigNode value = convert(entry.second, depth + 1);
+            // The key's position is what a reader looks for, and null values have no mark.
+            set_position(value, key_mark);
+            node.map.emplace_back(key, std::move(value));
+        }
+    }
+
+    const std::string& file_;
+    const YamlLimits& limits_;
+    std::size_t nodes_ = 0;
+};
+
+/// The bytes of `path`, refusing a file over limits.max_bytes before reading it (and while
+/// reading it, should it grow meanwhile).
+std::string read_bounded(const std::string& path, const YamlLimits& limits) {
+    std::error_code ec;
+    const std::uintmax_t size = std::filesystem::file_size(path, ec);
+    if (!ec && size > limits.max_bytes) refuse_size(path, size, limits);
+    std::ifstream in(path, std::ios::binary);
+    if (!in.is_open()) throw FileError(path, "cannot open file for reading");
+    constexpr std::size_t kChunkBytes = std::size_t{1} << 16;
+    std::string text;
+    while (in && text.size() <= limits.max_bytes) {
+        const std::size_t old_size = text.size();
+        text.resize(old_size + kChunkBytes);
+        in.read(text.data() + old_size, static_cast<std::streamsize>(kChunkBytes));
+        text.resize(old_size + static_cast<std::size_t>(in.gcount()));
+    }
+    if (in.bad()) throw FileError(path, "read failed");
+    if (text.size() > limits.max_bytes) refuse_size(path, std::nullopt, limits);
+    return text;
 }
 
 }  // namespace
+
+ConfigNode::ConfigNode() = default;
 
 const ConfigNode* ConfigNode::find(std::string_view key) const {
     for (const auto& [name, value] : map) {
@@ -96,12 +163,14 @@ std::string describe_kind(const ConfigNode& node) {
     }
 }
 
-ConfigNode parse_yaml_string(const std::string& text, const std::string& name) {
+ConfigNode parse_yaml_string(const std::string& text, const std::string& name,
+                             const YamlLimits& limits) {
+    if (text.size() > limits.max_bytes) refuse_size(name, text.size(), limits);
     std::vector<YAML::Node> documents;
     try {
         documents = YAML::LoadAll(text);
     } catch (const YAML::Exception& e) {
-        throw ParseError(name, location_of(e.mark), e.msg);
+        throw ParseError(name, location_of(e.mark), yaml_cpp_message(e));
     }
     if (documents.size() > 1) {
         throw ParseError(name, FileLocation{},
@@ -112,20 +181,16 @@ ConfigNode parse_yaml_string(const std::string& text, const std::string& name) {
         empty.file = name;
         return empty;
     }
-    return convert(documents.front(), name, 0);
+    return Converter(name, limits).convert(documents.front(), 0);
 }
 
-ConfigNode parse_yaml_file(const std::string& path) {
+ConfigNode parse_yaml_file(const std::string& path, const YamlLimits& limits) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec)) {
         throw FileError(path,
                         std::filesystem::exists(path, ec) ? "not a regular file" : "no such file");
     }
-    std::ifstream in(path, std::ios::binary);
-    if (!in.is_open()) throw FileError(path, "cannot open file for reading");
-    std::ostringstream text;
-    text << in.rdbuf();
-    return parse_yaml_string(text.str(), path);
+    return parse_yaml_string(read_bounded(path, limits), path, limits);
 }
 
 }  // namespace scantling::io

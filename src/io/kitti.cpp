@@ -90,10 +90,9 @@ std::vector<Eigen::Isometry3d> read_kitti_poses(const std::string& path) {
     detail::TextLine line{{}, 1, 0};
     std::vector<std::string_view> tokens;
     while (reader.next(line)) {
-        detail::split_tokens(line.text, tokens);
-        if (tokens.empty()) continue;
+        if (detail::trim(line.text).empty()) continue;
         const detail::LineContext where{path, line};
-        detail::expect_token_count(tokens, kPoseValues, where, "row-major 3x4 pose");
+        detail::split_exactly(line.text, tokens, kPoseValues, where, "row-major 3x4 pose");
         poses.push_back(parse_pose(tokens, where));
     }
     if (poses.empty())

@@ -18,8 +18,7 @@ using detail::PcdHeader;
 using Column = detail::PcdColumn;
 
 constexpr double kNanosecondsToSeconds = 1e-9;
-// An LZF back reference of 3 bytes expands to at most 264: nothing compresses better.
-constexpr std::size_t kMaxLzfRatio = 88;
+constexpr std::size_t kCompressedSizesBytes = 8;  // uint32 compressed, uint32 uncompressed
 
 double time_scale(const PcdField& field) {
     return detail::is_integer(field.type) ? kNanosecondsToSeconds : 1.0;
@@ -82,52 +81,21 @@ PointCloud decode_binary(const unsigned char* data, const PcdHeader& header,
     return builder.finish();
 }
 
-[[noreturn]] void fail_short(const std::string& path, std::size_t file_size,
-                             const std::string& what) {
-    throw ParseError(path, {file_size, std::nullopt, std::nullopt}, "file ends early: " + what);
-}
-
+// validate_layout (in parse_pcd_header) checked that POINTS x point_step bytes are present.
 PointCloud read_binary(const std::string& bytes, const PcdHeader& header,
-                       std::vector<Column> columns, const std::string& path) {
-    const std::size_t available = bytes.size() - header.data_offset;
-    if (header.points > available / header.point_step) {
-        fail_short(path, bytes.size(),
-                   "expected " + std::to_string(header.points) + " points of " +
-                       std::to_string(header.point_step) + " bytes from byte " +
-                       std::to_string(header.data_offset) + ", found " + std::to_string(available) +
-                       " bytes");
-    }
+                       std::vector<Column> columns) {
     const auto* data = reinterpret_cast<const unsigned char*>(bytes.data()) + header.data_offset;
     return decode_binary(data, header, std::move(columns), false);
 }
 
+// validate_layout checked the block sizes: the uncompressed size is POINTS x point_step and at
+// most 88 times the compressed block, which lies inside the file.
 PointCloud read_compressed(const std::string& bytes, const PcdHeader& header,
                            std::vector<Column> columns, const std::string& path) {
-    const std::size_t start = header.data_offset;
-    const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
-    if (bytes.size() - start < 8)
-        fail_short(path, bytes.size(), "expected the 8-byte compressed block sizes");
-    const std::size_t compressed =
-        detail::load_scalar<std::uint32_t>(data + start, std::endian::little);
-    const std::size_t raw =
-        detail::load_scalar<std::uint32_t>(data + start + 4, std::endian::little);
-    if (header.points > 0 && raw / header.points != header.point_step) {
-        throw ParseError(path, {start + 4, std::nullopt, std::nullopt},
-                         "uncompressed size " + std::to_string(raw) + ", expected POINTS * " +
-                             std::to_string(header.point_step) + " bytes");
-    }
-    if (compressed > bytes.size() - start - 8) {
-        fail_short(path, bytes.size(),
-                   "compressed block of " + std::to_string(compressed) + " bytes starts at byte " +
-                       std::to_string(start + 8));
-    }
-    if (raw > compressed * kMaxLzfRatio) {
-        throw ParseError(path, {start + 4, std::nullopt, std::nullopt},
-                         "uncompressed size " + std::to_string(raw) + " is impossible for " +
-                             std::to_string(compressed) + " compressed bytes");
-    }
+    const std::size_t start = header.data_offset + kCompressedSizesBytes;
+    const auto* data = reinterpret_cast<const unsigned char*>(bytes.data()) + start;
     std::vector<std::uint8_t> unpacked(header.points * header.point_step);
-    detail::lzf_decompress({data + start + 8, compressed}, unpacked, path, start + 8);
+    detail::lzf_decompress({data, header.compressed_size}, unpacked, path, start);
     return decode_binary(unpacked.data(), header, std::move(columns), true);
 }
 
@@ -141,7 +109,7 @@ PointCloud read_pcd(const std::string& path) {
         case detail::PcdDataKind::kAscii:
             return detail::read_pcd_ascii(bytes, header, columns, path);
         case detail::PcdDataKind::kBinary:
-            return read_binary(bytes, header, std::move(columns), path);
+            return read_binary(bytes, header, std::move(columns));
         case detail::PcdDataKind::kBinaryCompressed:
             return read_compressed(bytes, header, std::move(columns), path);
     }

@@ -10,17 +10,35 @@ namespace {
 
 constexpr double kNanosecondsToSeconds = 1e-9;
 
+[[noreturn]] void fail(const std::string& path, int line, const std::string& what) {
+    throw ParseError(path, {std::nullopt, line, std::nullopt}, what);
+}
+
 bool all_digits(std::string_view token) {
     return !token.empty() &&
            std::all_of(token.begin(), token.end(), [](char c) { return c >= '0' && c <= '9'; });
 }
 
+/// An integer the field's declared TYPE and SIZE can hold ("U 1" with 300 is a lying header).
+template <typename Int>
+Int fitting(Int value, ScalarType type, std::string_view token, const PcdField& field,
+            const LineContext& where) {
+    if (!integer_fits(type, value)) {
+        throw_bad_token(token, where,
+                        std::string("a value that fits ") + scalar_type_name(type) + " (field '" +
+                            field.name + "')");
+    }
+    return value;
+}
+
 double parse_value(std::string_view token, const PcdField& field, const LineContext& where) {
     switch (field.type_char) {
         case 'I':
-            return static_cast<double>(parse_int(token, where));
+            return static_cast<double>(
+                fitting(parse_int(token, where), field.type, token, field, where));
         case 'U':
-            return static_cast<double>(parse_uint(token, where));
+            return static_cast<double>(
+                fitting(parse_uint(token, where), field.type, token, field, where));
         default: {
             // A float32 field holds the float nearest to the text, not the nearest double.
             const double value = parse_double(token, where, NonFinite::kAllow);
@@ -33,9 +51,15 @@ double parse_value(std::string_view token, const PcdField& field, const LineCont
 std::uint32_t parse_packed_rgb(std::string_view token, const PcdField& field,
                                const LineContext& where) {
     if (field.type_char != 'F' || all_digits(token)) {
-        return static_cast<std::uint32_t>(parse_uint(token, where));
+        return static_cast<std::uint32_t>(
+            fitting(parse_uint(token, where), ScalarType::kU32, token, field, where));
     }
     return packed_rgb(static_cast<float>(parse_double(token, where, NonFinite::kAllow)));
+}
+
+void expect_values(const LineContext& where, const PcdHeader& header) {
+    expect_token_count(count_tokens(where.line.text), header.values_per_point, where,
+                       "one per field element");
 }
 
 struct AsciiPoint {
@@ -44,22 +68,34 @@ struct AsciiPoint {
     std::vector<CloudTarget> field_targets;  // per field in FIELDS
     CloudBuilder builder;
 
-    void parse(const std::vector<std::string_view>& tokens, const TextLine& line, std::size_t i) {
+    // Tokens are taken one at a time (TokenCursor): a hostile line of millions of tokens costs
+    // no memory, and is counted only to say how many values it held.
+    void parse(const TextLine& line, std::size_t i) {
         const LineContext where{path, line};
-        std::size_t t = 0;
-        for (std::size_t f = 0; f < header.fields.size(); ++f) {
-            const PcdField& field = header.fields[f];
-            const CloudTarget target = field_targets[f];
-            if (target == CloudTarget::kPackedRgb) {
-                builder.set_packed_rgb(i, parse_packed_rgb(tokens[t++], field, where));
-                continue;
-            }
-            for (std::size_t k = 0; k < field.count; ++k) {
-                const double value = parse_value(tokens[t++], field, where);
-                const bool ns = target == CloudTarget::kTime && field.type_char != 'F';
-                builder.set(target, i, ns ? value * kNanosecondsToSeconds : value);
-            }
+        TokenCursor cursor(line.text);
+        for (std::size_t f = 0; f < header.fields.size(); ++f) parse_field(cursor, where, f, i);
+        std::string_view extra;
+        if (cursor.next(extra)) expect_values(where, header);
+    }
+
+    void parse_field(TokenCursor& cursor, const LineContext& where, std::size_t f, std::size_t i) {
+        const PcdField& field = header.fields[f];
+        const CloudTarget target = field_targets[f];
+        if (target == CloudTarget::kPackedRgb) {
+            builder.set_packed_rgb(i, parse_packed_rgb(take(cursor, where), field, where));
+            return;
         }
+        const bool ns = target == CloudTarget::kTime && field.type_char != 'F';
+        for (std::size_t k = 0; k < field.count; ++k) {
+            const double value = parse_value(take(cursor, where), field, where);
+            builder.set(target, i, ns ? value * kNanosecondsToSeconds : value);
+        }
+    }
+
+    std::string_view take(TokenCursor& cursor, const LineContext& where) const {
+        std::string_view token;
+        if (!cursor.next(token)) expect_values(where, header);
+        return token;
     }
 };
 
@@ -69,42 +105,43 @@ std::vector<CloudTarget> field_targets(const PcdHeader& header) {
     return targets;
 }
 
-[[noreturn]] void fail(const std::string& path, int line, const std::string& what) {
-    throw ParseError(path, {std::nullopt, line, std::nullopt}, what);
+/// Calls on_row(line) for each non-empty data line; throws at the first line past POINTS or at
+/// the end of the data when fewer than POINTS lines hold values.
+template <typename OnRow>
+void for_each_row(const std::string& bytes, const PcdHeader& header, const std::string& path,
+                  OnRow on_row) {
+    LineReader reader(bytes, header.data_offset, header.data_line + 1);
+    TextLine line{{}, header.data_line, 0};
+    std::size_t rows = 0;
+    while (reader.next(line)) {
+        if (trim(line.text).empty()) continue;
+        if (rows == header.points) {
+            fail(path, line.number, "more points than POINTS = " + std::to_string(header.points));
+        }
+        on_row(line, rows++);
+    }
+    if (rows < header.points) {
+        fail(path, line.number,
+             "file ends after " + std::to_string(rows) +
+                 " points, expected POINTS = " + std::to_string(header.points));
+    }
 }
 
 }  // namespace
 
+void check_ascii_rows(const std::string& bytes, const PcdHeader& header, const std::string& path) {
+    for_each_row(bytes, header, path, [&](const TextLine& line, std::size_t) {
+        expect_values({path, line}, header);
+    });
+}
+
 PointCloud read_pcd_ascii(const std::string& bytes, const PcdHeader& header,
                           const std::vector<PcdColumn>& columns, const std::string& path) {
-    if (header.points > bytes.size() - header.data_offset) {
-        fail(path, header.data_line,
-             "POINTS = " + std::to_string(header.points) + " but only " +
-                 std::to_string(bytes.size() - header.data_offset) + " bytes of data follow");
-    }
-    std::size_t values_per_line = 0;
-    for (const PcdField& field : header.fields) values_per_line += field.count;
+    // validate_layout bounded POINTS by the bytes present before this allocation.
     AsciiPoint point{header, path, field_targets(header),
                      CloudBuilder(header.points, column_targets(columns))};
-    LineReader reader(bytes, header.data_offset, header.data_line + 1);
-    TextLine line{{}, header.data_line, 0};
-    std::vector<std::string_view> tokens;
-    std::size_t i = 0;
-    while (reader.next(line)) {
-        const std::string_view text = trim(line.text);
-        if (text.empty()) continue;
-        if (i == header.points) {
-            fail(path, line.number, "more points than POINTS = " + std::to_string(header.points));
-        }
-        split_tokens(text, tokens);
-        expect_token_count(tokens, values_per_line, {path, line}, "one per field element");
-        point.parse(tokens, line, i++);
-    }
-    if (i < header.points) {
-        fail(path, line.number,
-             "file ends after " + std::to_string(i) +
-                 " points, expected POINTS = " + std::to_string(header.points));
-    }
+    for_each_row(bytes, header, path,
+                 [&](const TextLine& line, std::size_t i) { point.parse(line, i); });
     return point.builder.finish();
 }
 

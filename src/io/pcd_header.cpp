@@ -59,6 +59,10 @@ const std::pair<Tokens, TextLine>& require(const RawHeader& raw, const std::stri
     return it->second;
 }
 
+int line_of(const RawHeader& raw, const std::string& key) {
+    return raw.entries.at(key).second.number;
+}
+
 std::size_t single_uint(const RawHeader& raw, const std::string& key, const std::string& path) {
     const auto& [tokens, line] = require(raw, key, path);
     expect_token_count(tokens, 1, {path, line}, key);
@@ -104,7 +108,6 @@ std::vector<PcdField> parse_fields(const RawHeader& raw, const std::string& path
     const bool has_count = raw.entries.count("COUNT") > 0;
     const Tokens* counts = has_count ? &per_field(raw, "COUNT", names.size(), path).first : nullptr;
     std::vector<PcdField> fields(names.size());
-    std::size_t offset = 0;
     for (std::size_t f = 0; f < names.size(); ++f) {
         PcdField& field = fields[f];
         field.name = names[f];
@@ -123,8 +126,6 @@ std::vector<PcdField> parse_fields(const RawHeader& raw, const std::string& path
             if (field.count == 0)
                 fail(path, count_line.number, "COUNT of '" + field.name + "' is 0");
         }
-        field.offset = offset;
-        offset += field.size * field.count;
     }
     return fields;
 }
@@ -161,29 +162,37 @@ bool has_target(const std::vector<PcdColumn>& columns, CloudTarget target) {
                        [&](const PcdColumn& c) { return c.target == target; });
 }
 
+// Two fields feeding one member would be decoded silently, the later one winning.
+void check_not_mapped_yet(const std::vector<PcdColumn>& columns, const PcdField& field,
+                          CloudTarget target, int line, const std::string& path) {
+    const auto earlier = std::find_if(columns.begin(), columns.end(),
+                                      [&](const PcdColumn& c) { return c.target == target; });
+    if (earlier == columns.end()) return;
+    fail(path, line,
+         "fields '" + earlier->field->name + "' and '" + field.name +
+             "' both map to the same cloud member, expected one");
+}
+
 }  // namespace
 
 PcdHeader parse_pcd_header(const std::string& bytes, const std::string& path) {
     const RawHeader raw = read_raw_header(bytes, path);
     PcdHeader header;
     header.fields = parse_fields(raw, path);
-    for (const auto& f : header.fields) header.point_step += f.size * f.count;
     header.width = single_uint(raw, "WIDTH", path);
     header.height = single_uint(raw, "HEIGHT", path);
     header.points = single_uint(raw, "POINTS", path);
-    if (header.points != header.width * header.height) {
-        fail(path, require(raw, "POINTS", path).second.number,
-             "POINTS = " + std::to_string(header.points) + ", expected WIDTH * HEIGHT = " +
-                 std::to_string(header.width) + " * " + std::to_string(header.height));
-    }
     check_viewpoint(raw, path);
     header.data = parse_data_kind(raw, path);
+    header.fields_line =
+        raw.entries.count("FIELDS") ? line_of(raw, "FIELDS") : line_of(raw, "COLUMNS");
+    header.count_line = raw.entries.count("COUNT") ? line_of(raw, "COUNT") : line_of(raw, "SIZE");
+    header.points_line = line_of(raw, "POINTS");
     const TextLine& data_line = raw.entries.at("DATA").second;
     header.data_line = data_line.number;
-    header.data_offset = data_line.offset + data_line.text.size();
-    header.data_offset = bytes.find('\n', header.data_offset);
-    header.data_offset =
-        header.data_offset == std::string::npos ? bytes.size() : header.data_offset + 1;
+    const std::size_t newline = bytes.find('\n', data_line.offset + data_line.text.size());
+    header.data_offset = newline == std::string::npos ? bytes.size() : newline + 1;
+    validate_layout(header, bytes, path);
     return header;
 }
 
@@ -194,6 +203,7 @@ std::vector<PcdColumn> map_pcd_columns(const PcdHeader& header, const std::strin
         const CloudTarget target = cloud_target(field.name);
         if (target != CloudTarget::kNone) {
             check_mapped(field, target, header.data_line, path);
+            check_not_mapped_yet(columns, field, target, header.fields_line, path);
             columns.push_back({target, &field, 0, 0, token});
         }
         token += field.count;

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "detail/cloud_builder.hpp"
 #include "detail/ply_header.hpp"
@@ -43,9 +44,25 @@ VertexColumn vertex_column(const PlyProperty& property) {
     }
 }
 
+// Two properties feeding one member would be decoded silently, the later one winning.
+void check_not_mapped_yet(const std::vector<VertexColumn>& columns, const PlyElement& element,
+                          const PlyProperty& property, CloudTarget target,
+                          const std::string& path) {
+    for (std::size_t j = 0; j < columns.size(); ++j) {
+        if (target == CloudTarget::kNone || columns[j].target != target) continue;
+        throw ParseError(path, {std::nullopt, property.line, std::nullopt},
+                         "properties '" + element.properties[j].name + "' and '" + property.name +
+                             "' both map to the same cloud member");
+    }
+}
+
 std::vector<VertexColumn> vertex_columns(const PlyElement& element, const std::string& path) {
     std::vector<VertexColumn> columns;
-    for (const PlyProperty& p : element.properties) columns.push_back(vertex_column(p));
+    for (const PlyProperty& p : element.properties) {
+        const VertexColumn column = vertex_column(p);
+        check_not_mapped_yet(columns, element, p, column.target, path);
+        columns.push_back(column);
+    }
     for (const CloudTarget axis : {CloudTarget::kX, CloudTarget::kY, CloudTarget::kZ}) {
         if (std::none_of(columns.begin(), columns.end(),
                          [&](const VertexColumn& c) { return c.target == axis; })) {
@@ -56,12 +73,27 @@ std::vector<VertexColumn> vertex_columns(const PlyElement& element, const std::s
     return columns;
 }
 
+// Exact text of an integer-valued double, also beyond 2^64 where no integer type holds it.
+std::string integer_text(double n) {
+    char text[32];
+    std::snprintf(text, sizeof(text), "%.0f", n);
+    return text;
+}
+
+/// The list length, bounded by the values the rest of the data can hold before it is used as a
+/// loop bound or converted (a uint64 count near 2^64 does not fit a size_t).
 template <typename Source>
 std::size_t list_length(Source& source, const PlyProperty& property, const std::string& path) {
     const FileLocation where = source.location();
     const double n = source.scalar(property.count_type);
     if (n < 0) {
         throw ParseError(path, where, "negative list length in " + source.context.describe());
+    }
+    const std::size_t room = source.max_items(property.type);
+    if (n > static_cast<double>(room)) {
+        throw ParseError(path, where,
+                         "list of " + integer_text(n) + " values in " + source.context.describe() +
+                             ", but only " + std::to_string(room) + " more fit in the data");
     }
     return static_cast<std::size_t>(n);
 }
@@ -167,6 +199,19 @@ void read_faces(Source& source, const PlyElement& element, std::size_t num_verti
     }
 }
 
+/// The declared rows cannot fit in the data (validate_layout): walk it without storing anything,
+/// which throws where it ends (or at the first malformed value on the way).
+template <typename Source>
+[[noreturn]] void report_short_data(Source& source, const detail::PlyHeader& header,
+                                    const std::string& path) {
+    for (const PlyElement& element : header.elements) {
+        source.context.element = &element;
+        skip_element(source, element, path);
+    }
+    throw ParseError(path, source.location(),
+                     "the element counts in the header need more data than the file holds");
+}
+
 template <typename Source>
 PlyData read_body(Source& source, const detail::PlyHeader& header, const std::string& path) {
     const PlyElement* vertex = detail::find_element(header, "vertex");
@@ -174,8 +219,8 @@ PlyData read_body(Source& source, const detail::PlyHeader& header, const std::st
         throw ParseError(path, {std::nullopt, header.data_line - 1, std::nullopt},
                          "PLY header declares no element 'vertex'");
     }
+    if (!header.counts_fit) report_short_data(source, header, path);
     PlyData data;
-    for (const PlyElement& element : header.elements) source.check_room(element);
     for (const PlyElement& element : header.elements) {
         source.context.element = &element;
         if (&element == vertex) {

@@ -1,6 +1,9 @@
+#include <scantling/core/checked_arithmetic.hpp>
 #include <scantling/core/error.hpp>
 
 #include <optional>
+#include <set>
+#include <string_view>
 
 #include "detail/ply_header.hpp"
 #include "detail/text_lines.hpp"
@@ -9,6 +12,9 @@ namespace scantling::io::detail {
 namespace {
 
 using Tokens = std::vector<std::string_view>;
+
+// An ascii value takes a character and a separator (space or newline).
+constexpr std::uint64_t kMinAsciiBytesPerValue = 2;
 
 [[noreturn]] void fail(const std::string& path, int line, const std::string& what) {
     throw ParseError(path, {std::nullopt, line, std::nullopt}, what);
@@ -59,11 +65,13 @@ PlyProperty parse_property(const Tokens& tokens, const std::string& path, const 
             fail(path, line.number, "list count type must be an integer type");
         property.type = require_type(tokens[3], path, line.number);
         property.name = tokens[4];
+        property.line = line.number;
         return property;
     }
     expect_token_count(tokens, 3, {path, line}, "property <type> <name>");
     property.type = require_type(tokens[1], path, line.number);
     property.name = tokens[2];
+    property.line = line.number;
     return property;
 }
 
@@ -102,7 +110,46 @@ struct HeaderParser {
     }
 };
 
+void check_unique_names(const PlyHeader& header, const std::string& path) {
+    std::set<std::string_view> elements;
+    for (const PlyElement& element : header.elements) {
+        if (!elements.insert(element.name).second) {
+            fail(path, element.line, "element '" + element.name + "' declared twice");
+        }
+        std::set<std::string_view> properties;
+        for (const PlyProperty& property : element.properties) {
+            if (properties.insert(property.name).second) continue;
+            fail(path, property.line,
+                 "property '" + property.name + "' declared twice in element '" + element.name +
+                     "'");
+        }
+    }
+}
+
+/// The least bytes one row of `element` takes: a list may be empty but has its count.
+std::uint64_t min_row_bytes(const PlyElement& element, PlyFormat format) {
+    std::uint64_t bytes = 0;
+    for (const PlyProperty& p : element.properties) {
+        bytes += format == PlyFormat::kAscii ? kMinAsciiBytesPerValue
+                                             : scalar_size(p.is_list ? p.count_type : p.type);
+    }
+    return bytes;  // <= 8 x the properties of a header held in memory: cannot overflow
+}
+
 }  // namespace
+
+void validate_layout(PlyHeader& header, std::size_t data_bytes, const std::string& path) {
+    check_unique_names(header, path);
+    std::optional<std::uint64_t> needed = 0;
+    for (const PlyElement& element : header.elements) {
+        const auto rows = checked_multiply(element.count, min_row_bytes(element, header.format));
+        needed = rows ? checked_add(*needed, *rows) : std::nullopt;
+        if (!needed) break;
+    }
+    // The last ascii row may lack its newline.
+    const std::uint64_t slack = header.format == PlyFormat::kAscii ? 1 : 0;
+    header.counts_fit = needed && *needed <= data_bytes + slack;
+}
 
 PlyHeader parse_ply_header(const std::string& bytes, const std::string& path) {
     if (bytes.empty()) fail(path, 1, "empty file, expected a PLY header starting with 'ply'");
@@ -116,6 +163,7 @@ PlyHeader parse_ply_header(const std::string& bytes, const std::string& path) {
         if (!parser.has_format) fail(path, line.number, "PLY header lacks the format line");
         parser.header.data_offset = reader.position();
         parser.header.data_line = line.number + 1;
+        validate_layout(parser.header, bytes.size() - reader.position(), path);
         return parser.header;
     }
     fail(path, line.number, "PLY header has no end_header line");

@@ -1,18 +1,21 @@
 // Text files of a simulator recording: stamps, IMU and VIO CSVs (recording.hpp).
 #include <fmt/format.h>
 
+#include <cmath>
 #include <cstdint>
 #include <initializer_list>
 
 #include <scantling/core/error.hpp>
 #include <scantling/io/recording.hpp>
 
+#include "detail/stamp_file.hpp"
 #include "detail/text_lines.hpp"
 
 namespace scantling::io {
 namespace {
 
 using detail::LineContext;
+using detail::StampFile;
 using detail::TextLine;
 
 FileLocation at_line(int line) {
@@ -44,17 +47,51 @@ std::string_view match_header(const std::string& path, detail::LineReader& reade
     throw ParseError(path, at_line(1), fmt::format("expected the header '{}'", *headers.begin()));
 }
 
+/// How the stamps (first column) of a file must follow each other. UWB rows share the stamp of
+/// their ranging round (one row per anchor); every other stream has one row per sample.
+enum class StampOrder { kIncreasing, kNonDecreasing };
+
+/// Where the previous stamp of a file was, so that a stamp going backwards (or repeating) can
+/// be refused naming both lines: the readers integrate over stamp differences, and a zero or
+/// negative one would be a division by zero or time running backwards, not a sample.
+struct StampCheck {
+    StampOrder order = StampOrder::kIncreasing;
+    double previous_s = 0.0;
+    int previous_line = 0;  ///< 0 before the first stamp
+
+    void next(double stamp_s, const std::string& path, int line) {
+        if (!std::isfinite(stamp_s)) {
+            throw ParseError(path, at_line(line),
+                             fmt::format("stamp {} is not a finite number of seconds", stamp_s));
+        }
+        const bool in_order =
+            order == StampOrder::kIncreasing ? stamp_s > previous_s : stamp_s >= previous_s;
+        if (previous_line > 0 && !in_order) {
+            throw ParseError(path, at_line(line),
+                             fmt::format("stamp {} s is not after the previous one ({} s, line "
+                                         "{}), expected stamps that {}",
+                                         stamp_s, previous_s, previous_line,
+                                         order == StampOrder::kIncreasing ? "increase strictly"
+                                                                          : "never decrease"));
+        }
+        previous_s = stamp_s;
+        previous_line = line;
+    }
+};
+
 /// Every non-blank line after the header as parsed numbers, one per column of the header
-/// found (any of `headers`).
+/// found (any of `headers`); the first column is the stamp, in `order`.
 template <class Row>
 std::vector<Row> read_csv(const std::string& path, std::initializer_list<std::string_view> headers,
                           Row (*make)(const std::vector<double>&),
-                          detail::NonFinite non_finite = detail::NonFinite::kReject) {
+                          detail::NonFinite non_finite = detail::NonFinite::kReject,
+                          StampOrder order = StampOrder::kIncreasing) {
     const std::string text = detail::read_whole_file(path);
     detail::LineReader reader(text);
     const std::size_t columns = split_commas(match_header(path, reader, headers)).size();
     std::vector<Row> rows;
     std::vector<double> values(columns);
+    StampCheck stamps{.order = order};
     TextLine line;
     while (reader.next(line)) {
         if (detail::trim(line.text).empty()) continue;
@@ -67,6 +104,7 @@ std::vector<Row> read_csv(const std::string& path, std::initializer_list<std::st
         }
         for (std::size_t c = 0; c < columns; ++c)
             values[c] = detail::parse_double(fields[c], where, non_finite);
+        stamps.next(values[0], path, line.number);
         rows.push_back(make(values));
     }
     return rows;
@@ -129,7 +167,8 @@ std::vector<RangeRecord> read_range_csv(const std::string& path) {
 }
 
 std::vector<UwbRecord> read_uwb_csv(const std::string& path) {
-    return read_csv<UwbRecord>(path, {recording_layout::kUwbHeader}, &make_uwb, kAllowNan);
+    return read_csv<UwbRecord>(path, {recording_layout::kUwbHeader}, &make_uwb, kAllowNan,
+                               StampOrder::kNonDecreasing);
 }
 
 std::vector<PressureRecord> read_pressure_csv(const std::string& path) {
@@ -162,6 +201,7 @@ std::vector<std::vector<int>> read_visible_defects_csv(const std::string& path) 
     detail::LineReader reader(text);
     match_header(path, reader, {recording_layout::kVisibleDefectsHeader});
     std::vector<std::vector<int>> rows;
+    StampCheck stamps;
     TextLine line;
     while (reader.next(line)) {
         if (detail::trim(line.text).empty()) continue;
@@ -176,23 +216,31 @@ std::vector<std::vector<int>> read_visible_defects_csv(const std::string& path) 
             throw ParseError(path, at_line(line.number),
                              fmt::format("expected image index {}", rows.size()));
         }
-        detail::parse_double(fields[1], where);
+        stamps.next(detail::parse_double(fields[1], where), path, line.number);
         rows.push_back(parse_ids(fields[2], where));
     }
     return rows;
 }
 
-std::vector<double> read_stamps(const std::string& path) {
+detail::StampFile detail::read_stamp_file(const std::string& path) {
     const std::string text = detail::read_whole_file(path);
     detail::LineReader reader(text);
     TextLine line;
-    std::vector<double> stamps;
+    StampFile file;
+    StampCheck check;
     while (reader.next(line)) {
         const std::string_view token = detail::trim(line.text);
         if (token.empty()) continue;
-        stamps.push_back(detail::parse_double(token, LineContext{path, line}));
+        const double stamp_s = detail::parse_double(token, LineContext{path, line});
+        check.next(stamp_s, path, line.number);
+        file.stamps_s.push_back(stamp_s);
+        file.lines.push_back(line.number);
     }
-    return stamps;
+    return file;
+}
+
+std::vector<double> read_stamps(const std::string& path) {
+    return detail::read_stamp_file(path).stamps_s;
 }
 
 }  // namespace scantling::io

@@ -21,13 +21,6 @@ FileLocation location_of(std::string_view token, const LineContext& where) {
             inside ? std::optional<int>(static_cast<int>(column) + 1) : std::nullopt};
 }
 
-[[noreturn]] void throw_bad_token(std::string_view token, const LineContext& where,
-                                  std::string_view expected) {
-    throw ParseError(
-        where.path, location_of(token, where),
-        "invalid token '" + std::string(token) + "', expected " + std::string(expected));
-}
-
 std::string_view without_plus(std::string_view token) {
     if (token.size() > 1 && token[0] == '+' && token[1] != '-' && token[1] != '+') {
         return token.substr(1);
@@ -47,6 +40,12 @@ Int parse_integer(std::string_view token, const LineContext& where, std::string_
 }
 
 }  // namespace
+
+void throw_bad_token(std::string_view token, const LineContext& where, std::string_view expected) {
+    throw ParseError(
+        where.path, location_of(token, where),
+        "invalid token '" + std::string(token) + "', expected " + std::string(expected));
+}
 
 std::string read_whole_file(const std::string& path) {
     std::error_code ec;
@@ -87,15 +86,31 @@ std::string_view trim(std::string_view text) {
     return text;
 }
 
+bool TokenCursor::next(std::string_view& token) {
+    while (pos_ < text_.size() && is_space(text_[pos_])) ++pos_;
+    const std::size_t start = pos_;
+    while (pos_ < text_.size() && !is_space(text_[pos_])) ++pos_;
+    token = text_.substr(start, pos_ - start);
+    return pos_ > start;
+}
+
+std::size_t count_tokens(std::string_view text) {
+    TokenCursor cursor(text);
+    std::size_t count = 0;
+    for (std::string_view token; cursor.next(token);) ++count;
+    return count;
+}
+
 void split_tokens(std::string_view text, std::vector<std::string_view>& tokens) {
     tokens.clear();
-    std::size_t i = 0;
-    while (i < text.size()) {
-        while (i < text.size() && is_space(text[i])) ++i;
-        const std::size_t start = i;
-        while (i < text.size() && !is_space(text[i])) ++i;
-        if (i > start) tokens.push_back(text.substr(start, i - start));
-    }
+    TokenCursor cursor(text);
+    for (std::string_view token; cursor.next(token);) tokens.push_back(token);
+}
+
+void split_exactly(std::string_view text, std::vector<std::string_view>& tokens,
+                   std::size_t expected, const LineContext& where, std::string_view what) {
+    expect_token_count(count_tokens(text), expected, where, what);
+    split_tokens(text, tokens);
 }
 
 std::vector<std::string_view> split_tokens(std::string_view text) {
@@ -128,12 +143,17 @@ std::uint64_t parse_uint(std::string_view token, const LineContext& where) {
     return parse_integer<std::uint64_t>(token, where, "a non-negative integer");
 }
 
+void expect_token_count(std::size_t found, std::size_t expected, const LineContext& where,
+                        std::string_view what) {
+    if (found == expected) return;
+    throw ParseError(where.path, {std::nullopt, where.line.number, std::nullopt},
+                     "found " + std::to_string(found) + " values, expected " +
+                         std::to_string(expected) + " (" + std::string(what) + ")");
+}
+
 void expect_token_count(const std::vector<std::string_view>& tokens, std::size_t expected,
                         const LineContext& where, std::string_view what) {
-    if (tokens.size() == expected) return;
-    throw ParseError(where.path, {std::nullopt, where.line.number, std::nullopt},
-                     "found " + std::to_string(tokens.size()) + " values, expected " +
-                         std::to_string(expected) + " (" + std::string(what) + ")");
+    expect_token_count(tokens.size(), expected, where, what);
 }
 
 void append_number(std::string& out, double value) {

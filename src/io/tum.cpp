@@ -66,10 +66,10 @@ std::vector<StampedPose> read_tum(const std::string& path) {
     detail::TextLine line{{}, 1, 0};
     std::vector<std::string_view> tokens;
     while (reader.next(line)) {
-        detail::split_tokens(detail::strip_comment(line.text), tokens);
-        if (tokens.empty()) continue;
+        const std::string_view values = detail::strip_comment(line.text);
+        if (values.empty()) continue;
         const detail::LineContext where{path, line};
-        detail::expect_token_count(tokens, kTumValues, where, "timestamp tx ty tz qx qy qz qw");
+        detail::split_exactly(values, tokens, kTumValues, where, "timestamp tx ty tz qx qy qz qw");
         StampedPose pose = parse_line(tokens, where);
         if (!poses.empty() && !(pose.stamp_s > poses.back().stamp_s)) {
             fail(path, line.number,

@@ -22,27 +22,15 @@ namespace layout = io::recording_layout;
 
 namespace {
 
-const char* const kLayoutEntries[] = {
-    layout::kGroundTruth,  layout::kLidarDir, layout::kDepthDir,   layout::kImagesDir,
-    layout::kImu,          layout::kVio,      layout::kWorldDir,   layout::kSummary,
-    layout::kTiming,       layout::kSonarDir, layout::kRosetteDir, layout::kStereoDir,
-    layout::kRange,        layout::kUwb,      layout::kPressure,   layout::kDvl,
-    layout::kWheelOdometry};
-
-void prepare_directory(const fs::path& dir, bool overwrite) {
-    std::error_code ec;
-    if (fs::exists(dir, ec) && !fs::is_directory(dir, ec)) {
-        throw FileError(dir.string(), "exists and is not a directory");
-    }
-    if (fs::is_directory(dir, ec) && !fs::is_empty(dir, ec)) {
+/// An existing non-empty folder: refused without --force, and with it unless a recording.
+io::OutputTransaction::ReplaceCheck replace_check(const std::string& directory, bool overwrite) {
+    return [directory, overwrite](const std::string&) {
         if (!overwrite) {
-            throw FileError(dir.string(),
-                            "output directory is not empty (use --force to overwrite a recording)");
+            throw FileError(directory,
+                            "output directory is not empty (use --force to replace a recording)");
         }
-        for (const char* entry : kLayoutEntries) fs::remove_all(dir / entry, ec);
-    }
-    fs::create_directories(dir, ec);
-    if (ec) throw FileError(dir.string(), "cannot create directory: " + ec.message());
+        check_replaceable_recording(directory);
+    };
 }
 
 void create_folder(const fs::path& dir) {
@@ -63,15 +51,16 @@ void write_text(const std::string& path, const std::string& text) {
 }  // namespace
 
 RecordingWriter::RecordingWriter(std::string directory, bool overwrite)
-    : directory_(std::move(directory)) {
-    prepare_directory(directory_, overwrite);
+    : directory_(std::move(directory)),
+      staging_directory_(
+          transaction_.stage_folder(directory_, replace_check(directory_, overwrite))) {
     imu_csv_ = std::string(layout::kImuHeader) + "\n";
     vio_csv_ = std::string(layout::kVioFeatureQualityHeader) + "\n";
     visible_defects_csv_ = std::string(layout::kVisibleDefectsHeader) + "\n";
 }
 
 std::string RecordingWriter::path(const std::string& relative) const {
-    return (fs::path(directory_) / relative).string();
+    return (fs::path(staging_directory_) / relative).string();
 }
 
 void RecordingWriter::write_world(const World& world, const WorldExportConfig& config) {
@@ -214,5 +203,7 @@ void RecordingWriter::write_timing(double wall_time_s, double real_time_factor) 
     json["real_time_factor"] = real_time_factor;
     write_text(path(layout::kTiming), json.dump(2) + "\n");
 }
+
+void RecordingWriter::commit() { transaction_.commit(); }
 
 }  // namespace scantling::sim

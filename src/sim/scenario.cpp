@@ -10,7 +10,13 @@
 #include <scantling/core/error.hpp>
 #include <scantling/core/se3.hpp>
 #include <scantling/io/config_node.hpp>
+#include <scantling/sim/scenario_estimate.hpp>
+#include <scantling/sim/scenario_limits.hpp>
 #include <scantling/sim/scenario_schema.hpp>
+
+#include "detail/scenario_checks.hpp"
+
+#include <fmt/format.h>
 
 namespace scantling::sim {
 namespace {
@@ -28,7 +34,84 @@ std::string resolve_path(const std::string& path, const std::string& base_direct
     return (std::filesystem::path(base_directory) / file).string();
 }
 
+/// ConfigError "<prefix>.<field> = <value>, expected <expected>".
+[[noreturn]] void refuse(std::string_view prefix, std::string_view field, double value,
+                         std::string_view expected) {
+    throw ConfigError(fmt::format("{} = {}, expected {}", key(prefix, field), value, expected));
+}
+
+/// A size key: 0 (the model's default) up to `max`.
+void check_size(std::string_view prefix, std::string_view field, double value, double max) {
+    if (!(value >= 0.0 && value <= max)) {
+        refuse(prefix, field, value, fmt::format("in [0, {}] (0 = the model's)", max));
+    }
+}
+
+/// The clock fires each sensor at most once per tick: a faster sensor would be recorded at
+/// 1 / dt_s while summary.json states its rate.
+void check_clock(const Scenario& s, const RecordingEstimate& estimate, std::string_view prefix) {
+    for (std::size_t i = 0; i < estimate.sensors.size(); ++i) {
+        const SensorOutputEstimate& sensor = estimate.sensors[i];
+        if (sensor.rate_hz * s.dt_s <= 1.0 + 1e-9) continue;
+        const char* preset = s.sensors[i].rate_hz > 0.0 ? "" : " (the preset's rate)";
+        throw ConfigError(fmt::format(
+            "{}.rate_hz = {:g} Hz{}, more than the simulation clock's 1 / dt_s = {:g} Hz (dt_s = "
+            "{}): a sensor fires at most once per tick; lower rate_hz or dt_s",
+            key(prefix, sensor.key), sensor.rate_hz, preset, 1.0 / s.dt_s, s.dt_s));
+    }
+}
+
+/// Duration and tick count: the state of every tick is held in memory. duration_s 0 takes the
+/// trajectory's duration, which no key range bounds.
+void check_ticks(const Scenario& s, const RecordingEstimate& estimate, std::string_view prefix) {
+    const std::string source = s.duration_s > 0.0 ? key(prefix, "duration_s")
+                                                  : key(prefix, "vehicle.trajectory") + " duration";
+    if (!(estimate.duration_s <= limits::kMaxDuration_s)) {
+        throw ConfigError(fmt::format("{} = {} s, expected <= {} s", source, estimate.duration_s,
+                                      limits::kMaxDuration_s));
+    }
+    if (estimate.ticks > limits::kMaxTicks) {
+        throw ConfigError(fmt::format(
+            "{} / dt_s = {} s / {} s = {} clock ticks, expected <= {} (the state of every tick "
+            "is held in memory); raise dt_s or shorten the run",
+            source, estimate.duration_s, s.dt_s, estimate.ticks, limits::kMaxTicks));
+    }
+}
+
+/// The section of the selected world type.
+void validate_section(const WorldSpec& w, const std::string& p) {
+    switch (w.type) {
+        case WorldType::kBallastTankMockup:
+            return w.ballast_tank_mockup.validate(p);
+        case WorldType::kBallastTankLarge:
+            return w.ballast_tank_large.validate(p);
+        case WorldType::kStorageTank:
+            return w.storage_tank.validate(p);
+        case WorldType::kDistillationColumn:
+            return w.distillation_column.validate(p);
+        case WorldType::kCylinder:
+            return w.cylinder.validate(p);
+        case WorldType::kPlate:
+            return w.plate.validate(p);
+        case WorldType::kMesh:
+            return w.mesh.validate(p);
+        case WorldType::kShipHull:
+            return w.ship_hull.validate(p);
+        case WorldType::kMoebius:
+            return w.moebius.validate(p);
+        case WorldType::kShipHullMesh:
+            return w.ship_hull_mesh.validate(p);
+        case WorldType::kUrban:
+            return w.urban.validate(p);
+    }
+}
+
 Scenario apply_document(const io::ConfigNode& root) {
+    if (root.is_null()) {
+        io::detail::fail(root, "",
+                         "the scenario is empty, expected a map with keys " +
+                             io::detail::join_names(scenario_schema().keys()));
+    }
     check_scenario_document(root);
     Scenario scenario;
     scenario_schema().apply(root, scenario);
@@ -44,34 +127,16 @@ Eigen::Isometry3d PoseSpec::to_isometry() const {
 }
 
 void WorldSpec::validate(std::string_view prefix) const {
-    const std::string p = key(prefix, to_string(type));
-    switch (type) {
-        case WorldType::kBallastTankMockup:
-            return ballast_tank_mockup.validate(p);
-        case WorldType::kBallastTankLarge:
-            return ballast_tank_large.validate(p);
-        case WorldType::kStorageTank:
-            return storage_tank.validate(p);
-        case WorldType::kDistillationColumn:
-            return distillation_column.validate(p);
-        case WorldType::kCylinder:
-            return cylinder.validate(p);
-        case WorldType::kPlate:
-            return plate.validate(p);
-        case WorldType::kMesh:
-            return mesh.validate(p);
-        case WorldType::kShipHull:
-            return ship_hull.validate(p);
-        case WorldType::kMoebius:
-            return moebius.validate(p);
-        case WorldType::kShipHullMesh:
-            return ship_hull_mesh.validate(p);
-        case WorldType::kUrban:
-            return urban.validate(p);
-    }
+    validate_section(*this, key(prefix, to_string(type)));
+    detail::check_world_size(*this, prefix);
 }
 
 void TrajectorySpec::validate(std::string_view prefix) const {
+    if (waypoints.waypoints.size() > limits::kMaxWaypoints) {
+        refuse(key(prefix, "waypoints"), "waypoints",
+               static_cast<double>(waypoints.waypoints.size()),
+               fmt::format("at most {} waypoints", limits::kMaxWaypoints));
+    }
     switch (type) {
         case TrajectoryType::kWaypoints:
             return waypoints.validate(key(prefix, "waypoints"));
@@ -117,22 +182,26 @@ void VehicleSpec::validate(std::string_view prefix) const {
 }
 
 void SensorSpec::validate(std::string_view prefix) const {
-    if (!(rate_hz >= 0.0) || !std::isfinite(rate_hz)) {
-        throw ConfigError(key(prefix, "rate_hz") + " = " + std::to_string(rate_hz) +
-                          ", expected >= 0 (0 = the preset's rate)");
+    if (!(rate_hz == 0.0 || (rate_hz >= limits::kMinRate_hz && rate_hz <= limits::kMaxRate_hz))) {
+        refuse(prefix, "rate_hz", rate_hz,
+               fmt::format("0 (the preset's rate) or in [{}, {}] Hz", limits::kMinRate_hz,
+                           limits::kMaxRate_hz));
     }
-    if (columns < 0 || width < 0 || height < 0 || num_beams < 0 || num_bins < 0 ||
-        !(max_range_m >= 0.0)) {
-        throw ConfigError(std::string(prefix) +
-                          ": columns, width, height, num_beams, num_bins and max_range_m must be "
-                          ">= 0");
-    }
+    check_size(prefix, "columns", columns, limits::kMaxLidarColumns);
+    check_size(prefix, "width", width, limits::kMaxImageSide_px);
+    check_size(prefix, "height", height, limits::kMaxImageSide_px);
+    check_size(prefix, "num_beams", num_beams, limits::kMaxSonarBeams);
+    check_size(prefix, "num_bins", num_bins, limits::kMaxSonarBins);
+    check_size(prefix, "max_range_m", max_range_m, limits::kMaxSensorRange_m);
     if (type == SensorType::kUwb && anchors.empty()) {
         throw ConfigError(key(prefix, "anchors") + " is empty, expected at least one anchor");
     }
+    if (anchors.size() > limits::kMaxUwbAnchors) {
+        refuse(prefix, "anchors", static_cast<double>(anchors.size()),
+               fmt::format("at most {} anchors", limits::kMaxUwbAnchors));
+    }
     if (!(ambient_light >= 0.0 && ambient_light <= 1.0)) {
-        throw ConfigError(key(prefix, "ambient_light") + " = " + std::to_string(ambient_light) +
-                          ", expected in [0, 1]");
+        refuse(prefix, "ambient_light", ambient_light, "in [0, 1]");
     }
     if (motion_distortion && type != SensorType::kSpinningLidar) {
         throw ConfigError(key(prefix, "motion_distortion") + " applies to spinning_lidar only");
@@ -140,20 +209,20 @@ void SensorSpec::validate(std::string_view prefix) const {
 }
 
 void ExportSpec::validate(std::string_view prefix) const {
-    if (!(map_spacing_m > 0.0)) {
-        throw ConfigError(key(prefix, "map_spacing_m") + " = " + std::to_string(map_spacing_m) +
-                          ", expected > 0");
+    if (!(std::isfinite(map_spacing_m) && map_spacing_m >= limits::kMinMapSpacing_m)) {
+        refuse(prefix, "map_spacing_m", map_spacing_m,
+               fmt::format(">= {} m", limits::kMinMapSpacing_m));
     }
 }
 
 void Scenario::validate(std::string_view prefix) const {
-    if (!(duration_s >= 0.0) || !std::isfinite(duration_s)) {
-        throw ConfigError(key(prefix, "duration_s") + " = " + std::to_string(duration_s) +
-                          ", expected >= 0");
+    if (!(duration_s >= 0.0 && duration_s <= limits::kMaxDuration_s)) {
+        refuse(prefix, "duration_s", duration_s,
+               fmt::format("in [0, {}] s (0 = the trajectory's)", limits::kMaxDuration_s));
     }
-    if (!(dt_s > 0.0) || !(dt_s <= 1.0)) {
-        throw ConfigError(key(prefix, "dt_s") + " = " + std::to_string(dt_s) +
-                          ", expected in (0, 1]");
+    if (!(dt_s >= limits::kMinDt_s && dt_s <= limits::kMaxDt_s)) {
+        refuse(prefix, "dt_s", dt_s,
+               fmt::format("in [{}, {}] s", limits::kMinDt_s, limits::kMaxDt_s));
     }
     world.validate(key(prefix, "world"));
     vehicle.validate(key(prefix, "vehicle"));
@@ -168,6 +237,11 @@ void Scenario::validate(std::string_view prefix) const {
     }
     export_world.validate(key(prefix, "export"));
     parallel.validate(key(prefix, "parallel"));
+    // Builds each sensor's effective config (the runner's): its rate and frame size.
+    const RecordingEstimate estimate = estimate_recording(*this);
+    check_clock(*this, estimate, prefix);
+    check_ticks(*this, estimate, prefix);
+    check_recording_estimate(estimate);
 }
 
 Scenario load_scenario(const std::string& path) {

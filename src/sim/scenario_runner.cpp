@@ -1,6 +1,8 @@
 // The scenario loop (scenario_runner.hpp).
 #include <scantling/sim/scenario_runner.hpp>
 
+#include <fmt/format.h>
+
 #include <chrono>
 #include <cmath>
 #include <memory>
@@ -71,12 +73,26 @@ void report(const Loop& loop, double t_s) {
     }
 }
 
+void stop_if_requested(const ScenarioRunOptions& options, double t_s, double duration_s,
+                       const std::string& directory) {
+    if (options.stop_requested && options.stop_requested()) {
+        throw ScenarioInterrupted(fmt::format(
+            "interrupted at simulated t = {:.3f} s of {:.3f} s; nothing was written to {}", t_s,
+            duration_s, directory));
+    }
+}
+
+void stop_if_requested(const Loop& loop, double t_s) {
+    stop_if_requested(loop.options, t_s, loop.duration_s, loop.writer.directory());
+}
+
 void run_loop(const Loop& loop) {
     SimClock clock(loop.scenario.dt_s);
     for (const auto& sensor : loop.sensors)
         clock.add(RateSchedule{.rate_hz = sensor->rate_hz(), .phase_s = 0.0});
     double next_report_s = 1.0;
     for (std::int64_t k = 0; k < loop.vehicle.num_ticks(); ++k, clock.advance()) {
+        stop_if_requested(loop, clock.now_s());
         const MotionState& state = loop.vehicle.at_tick(k);
         loop.writer.add_ground_truth(clock.now_s(), state.T_world_body);
         for (const std::size_t i : clock.due_now()) {
@@ -117,6 +133,7 @@ ScenarioRunResult run_scenario(const Scenario& scenario, const std::string& dire
     const RayCaster caster(world.mesh, world.surface_tags);
     const SceneView scene{caster, world.metadata};
 
+    stop_if_requested(options, 0.0, duration_s, directory);  // the world may take a while
     RecordingWriter writer(directory, options.overwrite);
     if (scenario.export_world.world) {
         writer.write_world(world,
@@ -137,6 +154,8 @@ ScenarioRunResult run_scenario(const Scenario& scenario, const std::string& dire
     result.wall_time_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     writer.write_timing(result.wall_time_s, duration_s / std::max(result.wall_time_s, 1e-9));
+    stop_if_requested(loop, duration_s);
+    writer.commit();
     return result;
 }
 

@@ -12,8 +12,6 @@ namespace {
 
 using io::ConfigNode;
 using io::ConfigSchema;
-using io::kNonNegative;
-using io::kPositive;
 using io::Range;
 using io::detail::fail;
 using io::detail::join_key;
@@ -137,20 +135,23 @@ void check_sensor(const ConfigNode& item, const std::string& path) {
 ConfigSchema<UwbAnchor> anchor_schema() {
     ConfigSchema<UwbAnchor> s;
     s.field("id", &UwbAnchor::id, "unique among the anchors")
-        .field("position_world", &UwbAnchor::position_world, "antenna, world frame, m");
+        .field("position_world", &UwbAnchor::position_world, "antenna, world frame, m",
+               kCoordinate);
     return s;
 }
 
 ConfigSchema<ExportSpec> export_schema() {
     ConfigSchema<ExportSpec> s;
     s.field("world", &ExportSpec::world, "write DIR/world/")
-        .field("map_spacing_m", &ExportSpec::map_spacing_m, "CAD-map sample spacing", kPositive);
+        .field("map_spacing_m", &ExportSpec::map_spacing_m, "CAD-map sample spacing",
+               between(limits::kMinMapSpacing_m, limits::kMaxWorldExtent_m));
     return s;
 }
 
 ConfigSchema<ParallelConfig> parallel_schema() {
     ConfigSchema<ParallelConfig> s;
-    s.field("num_threads", &ParallelConfig::num_threads, "0 = all hardware threads", kNonNegative);
+    s.field("num_threads", &ParallelConfig::num_threads, "0 = all hardware threads",
+            up_to(limits::kMaxThreads));
     return s;
 }
 
@@ -162,18 +163,25 @@ const ConfigSchema<SensorSpec>& sensor_spec_schema() {
         ConfigSchema<S> s;
         s.enum_field("type", &S::type, kSensorTypes)
             .enum_field("preset", &S::preset, kPresets, "model; default: the type's first")
-            .field("rate_hz", &S::rate_hz, "0 = the preset's rate", kNonNegative)
-            .field("columns", &S::columns, "spinning_lidar: 0 = the preset's", kNonNegative)
-            .field("width", &S::width, "cameras: image width, 0 = the preset's", kNonNegative)
-            .field("height", &S::height, "camera: image height, 0 = preset aspect", kNonNegative)
+            .field("rate_hz", &S::rate_hz, "0 = the preset's rate; at most 1 / dt_s",
+                   up_to(limits::kMaxRate_hz))
+            .field("columns", &S::columns, "spinning_lidar: 0 = the preset's",
+                   up_to(limits::kMaxLidarColumns))
+            .field("width", &S::width, "cameras: image width, 0 = the preset's",
+                   up_to(limits::kMaxImageSide_px))
+            .field("height", &S::height, "camera: image height, 0 = preset aspect",
+                   up_to(limits::kMaxImageSide_px))
             .field("noise", &S::noise, "false: ideal measurements")
             .field("motion_distortion", &S::motion_distortion, "spinning_lidar: cast per column")
             .field("write_ply", &S::write_ply, "spinning_lidar: also NNNNNN.ply (ring, time)")
-            .field("num_beams", &S::num_beams, "multibeam_sonar: 0 = the model's", kNonNegative)
-            .field("num_bins", &S::num_bins, "multibeam_sonar: 0 = the model's", kNonNegative)
+            .field("num_beams", &S::num_beams, "multibeam_sonar: 0 = the model's",
+                   up_to(limits::kMaxSonarBeams))
+            .field("num_bins", &S::num_bins, "multibeam_sonar: 0 = the model's",
+                   up_to(limits::kMaxSonarBins))
             .field("max_range_m", &S::max_range_m, "sonar, range_finder: 0 = the model's",
-                   kNonNegative)
-            .field("surface_z_m", &S::surface_z_m, "pressure: world z of the water surface")
+                   up_to(limits::kMaxSensorRange_m))
+            .field("surface_z_m", &S::surface_z_m, "pressure: world z of the water surface",
+                   kCoordinate)
             .field("ambient_light", &S::ambient_light, "vio: lighting factor, 0 = dark",
                    Range{.min = 0.0, .max = 1.0})
             .list("anchors", &S::anchors, anchor_schema(), "uwb: anchors, world frame")
@@ -194,8 +202,10 @@ const io::ConfigSchema<Scenario>& scenario_schema() {
             .section("world", &S::world, detail::world_spec_schema())
             .section("vehicle", &S::vehicle, detail::vehicle_spec_schema())
             .list("sensors", &S::sensors, detail::sensor_spec_schema(), "at most one per type")
-            .field("duration_s", &S::duration_s, "0 = the trajectory's", detail::kNonNegative)
-            .field("dt_s", &S::dt_s, "clock step; ground truth every step", detail::kPositive)
+            .field("duration_s", &S::duration_s, "0 = the trajectory's",
+                   detail::up_to(limits::kMaxDuration_s))
+            .field("dt_s", &S::dt_s, "clock step; ground truth every step",
+                   detail::between(limits::kMinDt_s, limits::kMaxDt_s))
             .field("seed", &S::seed, "root of every random stream")
             .section("export", &S::export_world, detail::export_schema())
             .section("parallel", &S::parallel, detail::parallel_schema());

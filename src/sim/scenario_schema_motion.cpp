@@ -20,16 +20,16 @@ const std::vector<std::pair<std::string, ProfileShape>> kShapes{
 
 ConfigSchema<Waypoint> waypoint_schema() {
     ConfigSchema<Waypoint> s;
-    s.field("position_m", &Waypoint::position_m, "world frame")
+    s.field("position_m", &Waypoint::position_m, "world frame", kCoordinate)
         .field("yaw_rad", &Waypoint::yaw_rad, "heading at the waypoint")
-        .field("dwell_s", &Waypoint::dwell_s, "rest on arrival", kNonNegative);
+        .field("dwell_s", &Waypoint::dwell_s, "rest on arrival", up_to(limits::kMaxDuration_s));
     return s;
 }
 
 ConfigSchema<WaypointTrajectoryConfig> waypoints_schema() {
     using C = WaypointTrajectoryConfig;
     ConfigSchema<C> s;
-    s.list("waypoints", &C::waypoints, waypoint_schema(), "at least one")
+    s.list("waypoints", &C::waypoints, waypoint_schema(), "at least one, at most 1e4")
         .field("max_speed_mps", &C::max_speed_mps, "", kPositive)
         .field("max_accel_mps2", &C::max_accel_mps2, "", kPositive)
         .field("max_yaw_rate_radps", &C::max_yaw_rate_radps, "", kPositive)
@@ -44,26 +44,26 @@ ConfigSchema<WaypointTrajectoryConfig> waypoints_schema() {
 ConfigSchema<HelixTrajectoryConfig> helix_schema() {
     using C = HelixTrajectoryConfig;
     ConfigSchema<C> s;
-    s.field("x0_m", &C::x0_m, "axis x")
-        .field("y0_m", &C::y0_m, "axis y")
-        .field("z0_m", &C::z0_m, "start height")
-        .field("radius_m", &C::radius_m, "", kPositive)
+    s.field("x0_m", &C::x0_m, "axis x", kCoordinate)
+        .field("y0_m", &C::y0_m, "axis y", kCoordinate)
+        .field("z0_m", &C::z0_m, "start height", kCoordinate)
+        .field("radius_m", &C::radius_m, "", kExtent)
         .field("omega_radps", &C::omega_radps, "angular rate")
         .field("v_z_mps", &C::v_z_mps, "climb rate")
         .field("yaw0_rad", &C::yaw0_rad, "0 faces the axis")
-        .field("rotations", &C::rotations, "", kPositive);
+        .field("rotations", &C::rotations, "", positive_up_to(limits::kMaxTurns));
     return s;
 }
 
 ConfigSchema<OrbitTrajectoryConfig> orbit_schema() {
     using C = OrbitTrajectoryConfig;
     ConfigSchema<C> s;
-    s.field("centre_m", &C::centre_m, "axis point at the start height")
-        .field("radius_m", &C::radius_m, "", kPositive)
+    s.field("centre_m", &C::centre_m, "axis point at the start height", kCoordinate)
+        .field("radius_m", &C::radius_m, "", kExtent)
         .field("angular_rate_radps", &C::angular_rate_radps, "> 0 counter-clockwise from above")
         .field("start_angle_rad", &C::start_angle_rad)
         .field("climb_rate_mps", &C::climb_rate_mps)
-        .field("turns", &C::turns, "", kPositive)
+        .field("turns", &C::turns, "", positive_up_to(limits::kMaxTurns))
         .enum_field("heading", &C::heading,
                     {{"face_centre", OrbitHeading::kFaceCentre},
                      {"face_travel", OrbitHeading::kFaceTravel}})
@@ -76,10 +76,10 @@ ConfigSchema<LawnmowerSpec> lawnmower_schema() {
     using S = LawnmowerSpec;
     ConfigSchema<S> s;
     s.section("T_world_wall", &S::wall, pose_spec_schema(), "wall frame: z towards the vehicle")
-        .field("width_m", as_derived<S>(&C::width_m), "along wall x", kPositive)
-        .field("height_m", as_derived<S>(&C::height_m), "along wall y", kPositive)
-        .field("standoff_m", as_derived<S>(&C::standoff_m), "", kPositive)
-        .field("slice_spacing_m", as_derived<S>(&C::slice_spacing_m), "", kPositive)
+        .field("width_m", as_derived<S>(&C::width_m), "along wall x", kExtent)
+        .field("height_m", as_derived<S>(&C::height_m), "along wall y", kExtent)
+        .field("standoff_m", as_derived<S>(&C::standoff_m), "", kExtent)
+        .field("slice_spacing_m", as_derived<S>(&C::slice_spacing_m), "", kExtent)
         .enum_field(
             "slices", as_derived<S>(&C::slices),
             {{"horizontal", SliceDirection::kHorizontal}, {"vertical", SliceDirection::kVertical}})
@@ -169,7 +169,7 @@ ConfigSchema<LeggedBaseConfig> legged_schema() {
 const ConfigSchema<PoseSpec>& pose_spec_schema() {
     static const ConfigSchema<PoseSpec> schema = [] {
         ConfigSchema<PoseSpec> s;
-        s.field("xyz", &PoseSpec::xyz, "translation, m")
+        s.field("xyz", &PoseSpec::xyz, "translation, m", kCoordinate)
             .field("rpy_deg", &PoseSpec::rpy_deg, "roll, pitch, yaw, degrees");
         return s;
     }();

@@ -11,13 +11,17 @@
 #include <scantling/sim/vio_features.hpp>
 
 #include "detail/scenario_parts.hpp"
+#include "detail/scenario_sensor_configs.hpp"
 
 namespace scantling::sim::detail {
+
 namespace {
 
 [[noreturn]] void bad_preset(const std::string& prefix) {
     throw ConfigError(prefix + ".preset does not apply to this sensor type");
 }
+
+}  // namespace
 
 SpinningLidarConfig lidar_config(const SensorSpec& spec, const std::string& prefix) {
     SpinningLidarConfig config;
@@ -39,6 +43,75 @@ SpinningLidarConfig lidar_config(const SensorSpec& spec, const std::string& pref
     config.validate(prefix);
     return config;
 }
+
+ImuConfig imu_config(const SensorSpec& spec, const std::string& prefix) {
+    ImuConfig config;
+    if (spec.preset == SensorPreset::kDefault || spec.preset == SensorPreset::kConsumerMems) {
+        config = consumer_mems_imu();
+    } else if (spec.preset == SensorPreset::kIndustrialMems) {
+        config = industrial_mems_imu();
+    } else {
+        bad_preset(prefix);
+    }
+    if (!spec.noise) config = noiseless(config);
+    if (spec.rate_hz > 0.0) config.rate_hz = spec.rate_hz;
+    config.T_body_sensor = spec.T_body_sensor.to_isometry();
+    config.validate(prefix);
+    return config;
+}
+
+VioConfig vio_config(const SensorSpec& spec, const std::string& prefix) {
+    if (spec.preset != SensorPreset::kDefault && spec.preset != SensorPreset::kT265) {
+        bad_preset(prefix);
+    }
+    VioConfig config = spec.noise ? VioConfig{} : noiseless(VioConfig{});
+    if (spec.rate_hz > 0.0) config.rate_hz = spec.rate_hz;
+    config.validate(prefix);
+    return config;
+}
+
+DepthCameraConfig depth_config(const SensorSpec& spec, const std::string& prefix) {
+    DepthCameraConfig config;
+    if (spec.preset == SensorPreset::kDefault || spec.preset == SensorPreset::kL515) {
+        config = intel_l515(spec.width > 0 ? spec.width : 640);
+    } else if (spec.preset == SensorPreset::kAzureNfov ||
+               spec.preset == SensorPreset::kAzureNfovBinned) {
+        config = azure_kinect_nfov(spec.preset == SensorPreset::kAzureNfovBinned);
+    } else {
+        bad_preset(prefix);
+    }
+    if (!spec.noise) config.depth_noise = ReturnModel{};
+    if (spec.rate_hz > 0.0) config.rate_hz = spec.rate_hz;
+    config.T_body_sensor = spec.T_body_sensor.to_isometry();
+    config.validate(prefix);
+    return config;
+}
+
+PinholeCameraConfig camera_config(const SensorSpec& spec, const std::string& prefix) {
+    PinholeCameraConfig config;
+    if (spec.preset == SensorPreset::kDefault || spec.preset == SensorPreset::kUav3d) {
+        config = uav3d_camera();
+    } else if (spec.preset == SensorPreset::kRov) {
+        config = rov_camera();
+    } else {
+        bad_preset(prefix);
+    }
+    if (spec.width > 0) {
+        const PinholeIntrinsics& k = config.intrinsics;
+        const int height =
+            spec.height > 0 ? spec.height
+                            : static_cast<int>(std::lround(1.0 * spec.width * k.height / k.width));
+        config.intrinsics =
+            PinholeIntrinsics::from_fov(spec.width, height, k.hfov_rad(), k.vfov_rad());
+    }
+    if (!spec.noise) config.pixel_noise_dn = 0.0;
+    if (spec.rate_hz > 0.0) config.rate_hz = spec.rate_hz;
+    config.T_body_sensor = spec.T_body_sensor.to_isometry();
+    config.validate(prefix);
+    return config;
+}
+
+namespace {
 
 class LidarSensor : public ScenarioSensor {
   public:
@@ -71,22 +144,6 @@ class LidarSensor : public ScenarioSensor {
     bool write_ply_;
 };
 
-ImuConfig imu_config(const SensorSpec& spec, const std::string& prefix) {
-    ImuConfig config;
-    if (spec.preset == SensorPreset::kDefault || spec.preset == SensorPreset::kConsumerMems) {
-        config = consumer_mems_imu();
-    } else if (spec.preset == SensorPreset::kIndustrialMems) {
-        config = industrial_mems_imu();
-    } else {
-        bad_preset(prefix);
-    }
-    if (!spec.noise) config = noiseless(config);
-    if (spec.rate_hz > 0.0) config.rate_hz = spec.rate_hz;
-    config.T_body_sensor = spec.T_body_sensor.to_isometry();
-    config.validate(prefix);
-    return config;
-}
-
 class ImuSensor : public ScenarioSensor {
   public:
     ImuSensor(const SensorSpec& spec, Rng rng, const std::string& prefix)
@@ -100,16 +157,6 @@ class ImuSensor : public ScenarioSensor {
     Rng rng_;
     ImuSimulator imu_;
 };
-
-VioConfig vio_config(const SensorSpec& spec, const std::string& prefix) {
-    if (spec.preset != SensorPreset::kDefault && spec.preset != SensorPreset::kT265) {
-        bad_preset(prefix);
-    }
-    VioConfig config = spec.noise ? VioConfig{} : noiseless(VioConfig{});
-    if (spec.rate_hz > 0.0) config.rate_hz = spec.rate_hz;
-    config.validate(prefix);
-    return config;
-}
 
 VioFeatureConfig vio_features(const SensorSpec& spec, const std::string& prefix) {
     VioFeatureConfig config;
@@ -144,23 +191,6 @@ class VioSensor : public ScenarioSensor {
     Rng rng_;
 };
 
-DepthCameraConfig depth_config(const SensorSpec& spec, const std::string& prefix) {
-    DepthCameraConfig config;
-    if (spec.preset == SensorPreset::kDefault || spec.preset == SensorPreset::kL515) {
-        config = intel_l515(spec.width > 0 ? spec.width : 640);
-    } else if (spec.preset == SensorPreset::kAzureNfov ||
-               spec.preset == SensorPreset::kAzureNfovBinned) {
-        config = azure_kinect_nfov(spec.preset == SensorPreset::kAzureNfovBinned);
-    } else {
-        bad_preset(prefix);
-    }
-    if (!spec.noise) config.depth_noise = ReturnModel{};
-    if (spec.rate_hz > 0.0) config.rate_hz = spec.rate_hz;
-    config.T_body_sensor = spec.T_body_sensor.to_isometry();
-    config.validate(prefix);
-    return config;
-}
-
 class DepthSensor : public ScenarioSensor {
   public:
     DepthSensor(const SensorSpec& spec, Rng rng, const std::string& prefix)
@@ -176,30 +206,6 @@ class DepthSensor : public ScenarioSensor {
     DepthCamera camera_;
     Rng rng_;
 };
-
-PinholeCameraConfig camera_config(const SensorSpec& spec, const std::string& prefix) {
-    PinholeCameraConfig config;
-    if (spec.preset == SensorPreset::kDefault || spec.preset == SensorPreset::kUav3d) {
-        config = uav3d_camera();
-    } else if (spec.preset == SensorPreset::kRov) {
-        config = rov_camera();
-    } else {
-        bad_preset(prefix);
-    }
-    if (spec.width > 0) {
-        const PinholeIntrinsics& k = config.intrinsics;
-        const int height =
-            spec.height > 0 ? spec.height
-                            : static_cast<int>(std::lround(1.0 * spec.width * k.height / k.width));
-        config.intrinsics =
-            PinholeIntrinsics::from_fov(spec.width, height, k.hfov_rad(), k.vfov_rad());
-    }
-    if (!spec.noise) config.pixel_noise_dn = 0.0;
-    if (spec.rate_hz > 0.0) config.rate_hz = spec.rate_hz;
-    config.T_body_sensor = spec.T_body_sensor.to_isometry();
-    config.validate(prefix);
-    return config;
-}
 
 class CameraSensor : public ScenarioSensor {
   public:

@@ -9,9 +9,9 @@
 #include <scantling/sim/stereo_points.hpp>
 
 #include "detail/scenario_parts.hpp"
+#include "detail/scenario_sensor_configs.hpp"
 
 namespace scantling::sim::detail {
-namespace {
 
 MultibeamSonarConfig sonar_config(const SensorSpec& spec, const std::string& prefix) {
     MultibeamSonarConfig config;
@@ -28,22 +28,6 @@ MultibeamSonarConfig sonar_config(const SensorSpec& spec, const std::string& pre
     return config;
 }
 
-class SonarSensor : public ScenarioSensor {
-  public:
-    SonarSensor(const SensorSpec& spec, Rng rng, const std::string& prefix)
-        : sonar_(sonar_config(spec, prefix)), rng_(std::move(rng)) {}
-    double rate_hz() const override { return sonar_.config().rate_hz; }
-    void fire(const FireContext& c) override {
-        const Eigen::Isometry3d T_world_body = c.vehicle.pose_at(c.stamp_s);
-        const SonarImage image = sonar_.scan(c.scene, T_world_body, rng_, c.stamp_s, c.parallel);
-        c.writer.add_sonar(image, T_world_body * sonar_.config().T_body_sensor);
-    }
-
-  private:
-    MultibeamSonar sonar_;
-    Rng rng_;
-};
-
 RosetteLidarConfig rosette_config(const SensorSpec& spec, const std::string& prefix) {
     if (spec.preset != SensorPreset::kDefault && spec.preset != SensorPreset::kLivoxMid70) {
         throw ConfigError(prefix + ".preset does not apply to this sensor type");
@@ -55,22 +39,6 @@ RosetteLidarConfig rosette_config(const SensorSpec& spec, const std::string& pre
     config.validate(prefix);
     return config;
 }
-
-class RosetteSensor : public ScenarioSensor {
-  public:
-    RosetteSensor(const SensorSpec& spec, Rng rng, const std::string& prefix)
-        : lidar_(rosette_config(spec, prefix)), rng_(std::move(rng)) {}
-    double rate_hz() const override { return lidar_.config().frame_rate_hz; }
-    void fire(const FireContext& c) override {
-        const Eigen::Isometry3d T_world_body = c.vehicle.pose_at(c.stamp_s);
-        const PointCloud frame = lidar_.scan(c.scene, T_world_body, rng_, c.stamp_s, c.parallel);
-        c.writer.add_rosette_frame(frame, T_world_body * lidar_.config().T_body_sensor);
-    }
-
-  private:
-    RosetteLidar lidar_;
-    Rng rng_;
-};
 
 StereoPointsConfig stereo_config(const SensorSpec& spec, const std::string& prefix) {
     StereoPointsConfig config;
@@ -88,6 +56,40 @@ StereoPointsConfig stereo_config(const SensorSpec& spec, const std::string& pref
     config.validate(prefix);
     return config;
 }
+
+namespace {
+
+class SonarSensor : public ScenarioSensor {
+  public:
+    SonarSensor(const SensorSpec& spec, Rng rng, const std::string& prefix)
+        : sonar_(sonar_config(spec, prefix)), rng_(std::move(rng)) {}
+    double rate_hz() const override { return sonar_.config().rate_hz; }
+    void fire(const FireContext& c) override {
+        const Eigen::Isometry3d T_world_body = c.vehicle.pose_at(c.stamp_s);
+        const SonarImage image = sonar_.scan(c.scene, T_world_body, rng_, c.stamp_s, c.parallel);
+        c.writer.add_sonar(image, T_world_body * sonar_.config().T_body_sensor);
+    }
+
+  private:
+    MultibeamSonar sonar_;
+    Rng rng_;
+};
+
+class RosetteSensor : public ScenarioSensor {
+  public:
+    RosetteSensor(const SensorSpec& spec, Rng rng, const std::string& prefix)
+        : lidar_(rosette_config(spec, prefix)), rng_(std::move(rng)) {}
+    double rate_hz() const override { return lidar_.config().frame_rate_hz; }
+    void fire(const FireContext& c) override {
+        const Eigen::Isometry3d T_world_body = c.vehicle.pose_at(c.stamp_s);
+        const PointCloud frame = lidar_.scan(c.scene, T_world_body, rng_, c.stamp_s, c.parallel);
+        c.writer.add_rosette_frame(frame, T_world_body * lidar_.config().T_body_sensor);
+    }
+
+  private:
+    RosetteLidar lidar_;
+    Rng rng_;
+};
 
 class StereoSensor : public ScenarioSensor {
   public:

@@ -10,9 +10,9 @@
 #include <scantling/sim/wheel_odometry.hpp>
 
 #include "detail/scenario_parts.hpp"
+#include "detail/scenario_sensor_configs.hpp"
 
 namespace scantling::sim::detail {
-namespace {
 
 RangeFinderConfig range_config(const SensorSpec& spec, const std::string& prefix) {
     RangeFinderConfig config;
@@ -38,6 +38,46 @@ RangeFinderConfig range_config(const SensorSpec& spec, const std::string& prefix
     return config;
 }
 
+UwbConfig uwb_config(const SensorSpec& spec, const std::string& prefix) {
+    UwbConfig config;
+    config.anchors = spec.anchors;
+    if (spec.rate_hz > 0.0) config.rate_hz = spec.rate_hz;
+    if (!spec.noise) config = noiseless(config);
+    config.T_body_sensor = spec.T_body_sensor.to_isometry();
+    config.validate(prefix);
+    return config;
+}
+
+PressureConfig pressure_config(const SensorSpec& spec, const std::string& prefix) {
+    PressureConfig config;
+    config.surface_z_m = spec.surface_z_m;
+    if (spec.rate_hz > 0.0) config.rate_hz = spec.rate_hz;
+    if (!spec.noise) config.pressure_sigma_pa = 0.0;
+    config.T_body_sensor = spec.T_body_sensor.to_isometry();
+    config.validate(prefix);
+    return config;
+}
+
+DvlConfig dvl_config(const SensorSpec& spec, const std::string& prefix) {
+    DvlConfig config = spec.noise ? DvlConfig{} : noiseless(DvlConfig{});
+    if (spec.rate_hz > 0.0) config.rate_hz = spec.rate_hz;
+    // An unset mount keeps the model's down-looking default (identity would look up).
+    const PoseSpec& mount = spec.T_body_sensor;
+    if (!mount.xyz.isZero() || !mount.rpy_deg.isZero()) config.T_body_sensor = mount.to_isometry();
+    config.validate(prefix);
+    return config;
+}
+
+WheelOdometryConfig wheel_config(const SensorSpec& spec, const std::string& prefix) {
+    WheelOdometryConfig config =
+        spec.noise ? WheelOdometryConfig{} : noiseless(WheelOdometryConfig{});
+    if (spec.rate_hz > 0.0) config.rate_hz = spec.rate_hz;
+    config.validate(prefix);
+    return config;
+}
+
+namespace {
+
 class RangeSensor : public ScenarioSensor {
   public:
     RangeSensor(const SensorSpec& spec, Rng rng, const std::string& prefix)
@@ -51,16 +91,6 @@ class RangeSensor : public ScenarioSensor {
     RangeFinder ranger_;
     Rng rng_;
 };
-
-UwbConfig uwb_config(const SensorSpec& spec, const std::string& prefix) {
-    UwbConfig config;
-    config.anchors = spec.anchors;
-    if (spec.rate_hz > 0.0) config.rate_hz = spec.rate_hz;
-    if (!spec.noise) config = noiseless(config);
-    config.T_body_sensor = spec.T_body_sensor.to_isometry();
-    config.validate(prefix);
-    return config;
-}
 
 class UwbSensor : public ScenarioSensor {
   public:
@@ -76,16 +106,6 @@ class UwbSensor : public ScenarioSensor {
     Rng rng_;
 };
 
-PressureConfig pressure_config(const SensorSpec& spec, const std::string& prefix) {
-    PressureConfig config;
-    config.surface_z_m = spec.surface_z_m;
-    if (spec.rate_hz > 0.0) config.rate_hz = spec.rate_hz;
-    if (!spec.noise) config.pressure_sigma_pa = 0.0;
-    config.T_body_sensor = spec.T_body_sensor.to_isometry();
-    config.validate(prefix);
-    return config;
-}
-
 class PressureSensorPart : public ScenarioSensor {
   public:
     PressureSensorPart(const SensorSpec& spec, Rng rng, const std::string& prefix)
@@ -100,16 +120,6 @@ class PressureSensorPart : public ScenarioSensor {
     Rng rng_;
 };
 
-DvlConfig dvl_config(const SensorSpec& spec, const std::string& prefix) {
-    DvlConfig config = spec.noise ? DvlConfig{} : noiseless(DvlConfig{});
-    if (spec.rate_hz > 0.0) config.rate_hz = spec.rate_hz;
-    // An unset mount keeps the model's down-looking default (identity would look up).
-    const PoseSpec& mount = spec.T_body_sensor;
-    if (!mount.xyz.isZero() || !mount.rpy_deg.isZero()) config.T_body_sensor = mount.to_isometry();
-    config.validate(prefix);
-    return config;
-}
-
 class DvlSensor : public ScenarioSensor {
   public:
     DvlSensor(const SensorSpec& spec, Rng rng, const std::string& prefix)
@@ -123,14 +133,6 @@ class DvlSensor : public ScenarioSensor {
     Dvl dvl_;
     Rng rng_;
 };
-
-WheelOdometryConfig wheel_config(const SensorSpec& spec, const std::string& prefix) {
-    WheelOdometryConfig config =
-        spec.noise ? WheelOdometryConfig{} : noiseless(WheelOdometryConfig{});
-    if (spec.rate_hz > 0.0) config.rate_hz = spec.rate_hz;
-    config.validate(prefix);
-    return config;
-}
 
 class WheelOdometrySensor : public ScenarioSensor {
   public:

@@ -1,7 +1,7 @@
 #include <scantling/core/error.hpp>
 #include <scantling/core/random.hpp>
-#include <scantling/io/atomic_file.hpp>
 #include <scantling/io/mesh_io.hpp>
+#include <scantling/io/output_transaction.hpp>
 #include <scantling/io/ply.hpp>
 #include <scantling/sim/world_export.hpp>
 
@@ -124,11 +124,15 @@ void write_world(const std::string& directory, const World& world,
     std::filesystem::create_directories(directory, error);
     if (error) throw FileError(directory, "cannot create the directory: " + error.message());
     const std::filesystem::path dir(directory);
-    io::write_ply((dir / "map.ply").string(), sample_map(world, config.map_spacing_m, config.seed));
-    io::write_mesh((dir / "mesh.ply").string(), world.mesh);
+    io::OutputTransaction outputs;  // the three files or none
+    outputs.write((dir / "map.ply").string(), [&](const std::string& path) {
+        io::write_ply(path, sample_map(world, config.map_spacing_m, config.seed));
+    });
+    outputs.write((dir / "mesh.ply").string(),
+                  [&](const std::string& path) { io::write_mesh(path, world.mesh); });
     const std::string json = metadata_to_json(world.metadata, world.surface_tags);
-    io::write_file_atomically((dir / "metadata.json").string(),
-                              [&](std::ostream& out) { out << json; });
+    outputs.write_stream((dir / "metadata.json").string(), [&](std::ostream& out) { out << json; });
+    outputs.commit();
 }
 
 }  // namespace scantling::sim

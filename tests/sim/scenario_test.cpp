@@ -205,17 +205,19 @@ TEST(ScenarioRunner, SameSeedGivesByteIdenticalRecordingsForAnyThreadCount) {
     EXPECT_NE(files_a.at("imu.csv"), files_c.at("imu.csv"));
 }
 
-TEST(ScenarioRunner, RefusesANonEmptyDirectoryUnlessOverwriting) {
+TEST(ScenarioRunner, RefusesANonEmptyDirectoryAndOverwritesOnlyARecording) {
     const fs::path dir = temp_dir("nonempty");
     fs::create_directories(dir);
     std::ofstream(dir / "keep.txt") << "x";
     const Scenario s = parse_scenario(kSmallScenario, "small.yaml");
     EXPECT_THROW(run_scenario(s, dir.string()), FileError);
     EXPECT_FALSE(fs::exists(dir / "summary.json"));
-    EXPECT_NO_THROW(
-        run_scenario(s, dir.string(), ScenarioRunOptions{.progress = {}, .overwrite = true}));
+    // --force never deletes a file that is not the recording's.
+    EXPECT_THROW(
+        run_scenario(s, dir.string(), ScenarioRunOptions{.progress = {}, .overwrite = true}),
+        FileError);
     EXPECT_TRUE(fs::exists(dir / "keep.txt"));
-    EXPECT_TRUE(fs::exists(dir / "summary.json"));
+    EXPECT_FALSE(fs::exists(dir / "summary.json"));
 }
 
 TEST(ScenarioRunner, MavTracksTheTrajectory) {

@@ -29,6 +29,13 @@ class InputError : public Error {
     using Error::Error;
 };
 
+/// An application refuses to pass on an estimate that did not converge (the libraries return
+/// that as data: RegistrationResult::converged); names the method, why and what to try.
+class NotConvergedError : public Error {
+  public:
+    using Error::Error;
+};
+
 /// A file cannot be opened, read, created or renamed (missing, unwritable, ...).
 class FileError : public Error {
   public:

@@ -10,6 +10,13 @@
 /// measured along the ground truth, as the KITTI devkit does. Errors between matched relative
 /// motions are `E = (T_est_i⁻¹ T_est_j)⁻¹ (T_gt_i⁻¹ T_gt_j)` (the devkit's pose_error).
 ///
+/// Pose files print rotations to 6–9 digits, so they are orthonormal only to ~1e-6. The
+/// relative metrics (KITTI, RPE) therefore project every rotation onto SO(3) first (so that
+/// the inverse is exact) and measure E from the difference of the two relative motions: a
+/// trajectory evaluated against itself gives exactly 0 in every metric. A rotation further
+/// than 1e-3 from orthonormal (max |RᵀR − I|, as the readers accept) or with det <= 0 is an
+/// InputError naming the pose.
+///
 /// All functions are pure, single-threaded and deterministic; costs are O(n log n) in the number
 /// of poses (the KITTI metric: O(n/step · lengths · log n)).
 
@@ -65,7 +72,9 @@ struct KittiMetrics {
 /// The KITTI metric of `est` against `gt` (same size, matched by index). For each start frame
 /// (every frame_step-th) and each length, the segment ends at the first frame whose ground-truth
 /// distance from the start exceeds the length (strictly, as the devkit); t_err = |trans E|,
-/// r_err = acos(clamp(½(trace R_E − 1), −1, 1)), both divided by the length.
+/// r_err = the angle of R_E (the devkit's acos(½(trace R_E − 1)), computed in the
+/// well-conditioned form 2 asin(|R_gt − R_est|_F / √8) of the two relative rotations), both
+/// divided by the length.
 /// @note Computed in double where the devkit uses float. On SiMpLE's published KITTI 00–10
 /// estimates the RTE agrees with its README to the 4 printed decimals; the RRE differs from
 /// the float devkit by up to 0.002 deg/100 m (float acos near 1 is coarse; double is closer
@@ -88,7 +97,7 @@ struct AteResult {
 
 /// ATE of `est` against `gt` (same size, >= 2 poses). On a straight path the rotation about
 /// the line is not determined, but every minimiser gives the same errors, so no error is
-/// thrown there (unlike align_umeyama).
+/// thrown there (unlike align_umeyama). Positions equal to the ground truth give exactly 0.
 AteResult absolute_trajectory_error(std::span<const Eigen::Isometry3d> gt,
                                     std::span<const Eigen::Isometry3d> est);
 

@@ -4,11 +4,12 @@
 /// renamed over the target only once everything was written. Readers therefore see either the
 /// old file or the complete new one, never a partial write.
 
-#include <cstdint>
-#include <fstream>
 #include <functional>
+#include <memory>
 #include <ostream>
 #include <string>
+
+#include <scantling/io/checked_output_file.hpp>
 
 namespace scantling::io {
 
@@ -16,15 +17,18 @@ namespace scantling::io {
 /// Without a successful `commit()` (exception, early return) the destructor removes the
 /// temporary and `path` is untouched.
 ///
-/// The temporary is "<path>.tmp-<pid>-<counter>" (same directory, so the rename stays on one
-/// file system and is atomic on POSIX). Not thread-safe: one writer per thread; distinct
-/// writers (even for the same path) never share a temporary.
+/// The temporary is "<path>.tmp-<pid>-<counter>" (temporary_sibling: same directory, so the
+/// rename stays on one file system and is atomic on POSIX; a name too long for NAME_MAX is
+/// shortened with a hash). It is created exclusively (O_EXCL), so distinct writers (even for the
+/// same path, even in other processes) never share a temporary. Not thread-safe: one writer per
+/// thread. Every write is checked where it happens (CheckedOutputFile), so a full disk is
+/// reported with its OS reason ("No space left on device").
 /// @note No fsync: atomic with respect to readers and to a crash of this process, not to a
 /// power loss (the renamed file may then be empty on some file systems).
 class AtomicFileWriter {
   public:
-    /// Creates the temporary (binary mode). Throws FileError naming `path` and the OS reason
-    /// (missing or unwritable directory, ...).
+    /// Creates the temporary. Throws FileError naming `path` and the OS reason (missing or
+    /// unwritable directory, `path` is a directory, ...).
     explicit AtomicFileWriter(std::string path);
     ~AtomicFileWriter();
 
@@ -34,11 +38,11 @@ class AtomicFileWriter {
     AtomicFileWriter& operator=(AtomicFileWriter&&) = delete;
 
     /// The stream to write to (the temporary file).
-    std::ostream& stream() { return out_; }
+    std::ostream& stream() { return out_->stream(); }
 
-    /// Flushes, checks the stream state, closes and renames the temporary over `path`.
-    /// Throws FileError naming `path` and the reason (write error, disk full, `path` is a
-    /// directory, ...); the temporary is removed in that case too. Call at most once.
+    /// Flushes, checks every write and the close, and renames the temporary over `path`.
+    /// Throws FileError naming `path` and the OS reason ("write failed: No space left on
+    /// device", ...); the temporary is removed in that case too. Call at most once.
     void commit();
 
     const std::string& path() const { return path_; }
@@ -47,8 +51,8 @@ class AtomicFileWriter {
   private:
     std::string path_;
     std::string temporary_path_;
-    std::ofstream out_;
-    bool committed_ = false;
+    std::unique_ptr<CheckedOutputFile> out_;
+    bool finished_ = false;
 };
 
 /// Convenience: opens an AtomicFileWriter for `path`, calls `write(stream)` and commits.

@@ -17,6 +17,8 @@ namespace scantling::io {
 ///   differ from the file's; `vertex_normals` stays empty (see compute_vertex_normals()).
 ///   All meshes of the scene are concatenated with their node transforms applied; points and
 ///   lines are dropped.
+/// Vertices are returned as stored, NaN/inf included, as the cloud readers return points
+/// (`scantling info` counts them; check_valid() refuses them before a mesh is used).
 /// Throws FileError (missing, unreadable, directory) or ParseError naming the file with
 /// assimp's message (unknown or malformed content), or when the file holds no triangle.
 /// Thread-safe (each call uses its own importer).

@@ -27,6 +27,13 @@ namespace scantling::io {
 /// line (header, ascii data) or byte offset (binary data): missing header keys, POINTS !=
 /// WIDTH * HEIGHT, unknown DATA type, garbage tokens, data shorter than declared, no x y z,
 /// corrupt compressed stream.
+/// Hostile headers: every size the header implies (SIZE x COUNT summed into the record, field
+/// offsets, WIDTH x HEIGHT, POINTS x record, the compressed block sizes) is computed with
+/// overflow checks and bounded by the bytes present before anything is allocated, so memory
+/// stays within a small multiple of the file size. Also refused: a field name used twice ("_"
+/// padding aside), two fields feeding one member (intensity and reflectance), an ascii integer
+/// outside its TYPE and SIZE, and bytes after binary data (POINTS or SIZE smaller than the data)
+/// other than up to 64 KiB of zeros or whitespace (PCL up to 1.8 pads files to a page).
 /// Cost: one read of the file plus O(points × fields); a 124k-point binary file takes a few ms.
 PointCloud read_pcd(const std::string& path);
 

@@ -35,6 +35,12 @@ struct PlyData {
 /// truncated data, too few / too many values, a face index out of range or a polygon with
 /// fewer than 3 corners, data left over after the last element (counts disagreeing), no
 /// vertex element or no x y z.
+/// Hostile headers: the rows all elements declare, times the least bytes a row takes (binary:
+/// its scalars and list counts; ascii: two characters a value), are summed with overflow checks
+/// and must fit in the data before anything is allocated (otherwise the data is walked without
+/// storing it to report where it ends); a list length must fit in the data left. Also refused:
+/// an element or property declared twice, two properties feeding one member (nx and
+/// normal_x), an ascii integer outside its declared type ("uchar" 300).
 /// Cost: one read of the file plus O(values).
 PlyData read_ply(const std::string& path);
 

@@ -238,10 +238,20 @@ class Recording {
 /// agree in count; also rosette/, stereo/, sonar/), and every CSV present. Throws FileError when
 /// DIR or groundtruth.tum is missing, ParseError naming the file and line for a malformed file or a
 /// count mismatch ("lidar/poses_gt.txt: 12 poses but lidar/times.txt has 13 stamps").
+///
+/// Refused, not repaired, because every choice would be a silent guess at what the recording
+/// meant (ParseError naming the file and line):
+/// - stamps that repeat or go backwards in any times.txt or CSV (UWB: backwards only, its
+///   rounds share a stamp per anchor) and non-finite stamps;
+/// - frame files and stamps that disagree: a stamp whose frame file (NNNNNN.bin/.ply/.png, the
+///   one the stream's reader needs) is missing, or a frame file with no stamp (index >= the
+///   number of stamps), as a truncated or hand-edited recording has. Frames would otherwise be
+///   dropped without a word or fail in the middle of a run.
 Recording open_recording(const std::string& directory);
 
 /// Readers of the CSV files (exposed for tests and tools). Throw FileError / ParseError
-/// naming the line (wrong header, wrong column count, non-number).
+/// naming the line (wrong header, wrong column count, non-number, a non-finite stamp or one
+/// not after the previous; uwb.csv: one before the previous).
 std::vector<ImuRecord> read_imu_csv(const std::string& path);
 /// Accepts kVioFeatureQualityHeader and the older kVioHeader (feature_quality left empty).
 std::vector<VioRecord> read_vio_csv(const std::string& path);
@@ -252,7 +262,8 @@ std::vector<UwbRecord> read_uwb_csv(const std::string& path);
 std::vector<PressureRecord> read_pressure_csv(const std::string& path);
 std::vector<DvlRecord> read_dvl_csv(const std::string& path);
 std::vector<WheelOdometryRecord> read_wheel_odometry_csv(const std::string& path);
-/// One number per line (blank lines skipped); ParseError naming the line.
+/// One number per line (blank lines skipped), finite and strictly increasing; ParseError
+/// naming the line otherwise.
 std::vector<double> read_stamps(const std::string& path);
 
 }  // namespace scantling::io

@@ -2,7 +2,10 @@
 /// @file
 /// Writes a simulator recording in the layout of io/recording.hpp. Frames (sweeps, depth
 /// frames, images) are written as they come; the text streams (ground truth, stamps, poses,
-/// IMU, VIO) are buffered and written by `finish`. Every file is written atomically.
+/// IMU, VIO) are buffered and written by `finish`. Everything goes to a temporary folder beside
+/// the recording's ("<name>.partial-<pid>-<n>"), which `commit` renames into place: a run that
+/// fails, is interrupted or meets a full disk leaves no partial recording (the writer removes
+/// the temporary folder when destroyed uncommitted; only SIGKILL or a power loss can leave it).
 ///
 /// Determinism: the bytes written depend only on the data given (numbers as the shortest text
 /// that reads back exactly), never on time or threads. Not thread-safe: one writer per run.
@@ -15,6 +18,7 @@
 #include <vector>
 
 #include <scantling/core/point_cloud.hpp>
+#include <scantling/io/output_transaction.hpp>
 #include <scantling/io/tum.hpp>
 #include <scantling/sim/dvl.hpp>
 #include <scantling/sim/imu.hpp>
@@ -63,12 +67,23 @@ struct RecordingCounts {
     std::int64_t wheel_odometry = 0;
 };
 
+/// Accepts a folder that holds only what a recording holds: at the top the files and folders
+/// of io/recording.hpp, in the frame folders the frames (NNNNNN.bin, .ply, .png) and the files
+/// the writer puts there, in world/ the files of write_world; no symlinks. Otherwise throws
+/// FileError naming `directory` and the first foreign entry ("holds 'notes.txt', ...").
+void check_replaceable_recording(const std::string& directory);
+
 class RecordingWriter {
   public:
-    /// Creates `directory` (and parents). Refuses (FileError naming it) a directory that
-    /// exists and is not empty unless `overwrite`; with `overwrite` the entries of the layout
-    /// (io/recording.hpp) are removed first and anything else is left alone.
+    /// Creates the temporary folder beside `directory` (and the parents of `directory`).
+    /// Refuses (FileError naming it) a `directory` that exists and is not empty unless
+    /// `overwrite`, and with `overwrite` one that is not a recording
+    /// (check_replaceable_recording). Nothing is removed here: `commit` replaces the old
+    /// recording once the new one is complete.
     RecordingWriter(std::string directory, bool overwrite);
+
+    RecordingWriter(const RecordingWriter&) = delete;
+    RecordingWriter& operator=(const RecordingWriter&) = delete;
 
     /// DIR/world/ (write_world).
     void write_world(const World& world, const WorldExportConfig& config);
@@ -104,9 +119,15 @@ class RecordingWriter {
     /// Writes timing.json (wall time; kept out of summary.json so that recordings of the
     /// same scenario and seed are byte-identical).
     void write_timing(double wall_time_s, double real_time_factor) const;
+    /// Moves the complete recording to `directory`, replacing what was there (checked again
+    /// as in the constructor). Call after finish and write_timing; nothing is written after.
+    void commit();
 
     const RecordingCounts& counts() const { return counts_; }
+    /// The recording's folder (where it is once committed).
     const std::string& directory() const { return directory_; }
+    /// Where the files are written until `commit`.
+    const std::string& staging_directory() const { return staging_directory_; }
 
   private:
     struct Stream {
@@ -121,6 +142,8 @@ class RecordingWriter {
     void finish_extra() const;
 
     std::string directory_;
+    io::OutputTransaction transaction_;
+    std::string staging_directory_;  // after transaction_: staged by it
     RecordingCounts counts_;
     std::vector<io::StampedPose> ground_truth_;
     Stream lidar_;

@@ -210,13 +210,21 @@ struct Scenario {
     ParallelConfig parallel{};  ///< threads for ray casting (results do not depend on it)
     /// Folder of the scenario file: `world.mesh.path` is relative to it.
     std::string base_directory;
-    /// Throws ConfigError naming the field ("duration_s = -1, expected >= 0", "sensors[1]...").
+    /// Throws ConfigError naming the field ("duration_s = -1, expected >= 0", "sensors[1]..."),
+    /// also for a value over its bound (scenario_limits.hpp), a world whose repeated structure
+    /// multiplies past limits::kMaxWorldElements, a sensor faster than the clock (its
+    /// effective rate above 1 / dt_s: the clock fires a sensor at most once per tick, so it
+    /// would be recorded slower than summary.json states), a run of more than
+    /// limits::kMaxTicks ticks, or a recording estimate over kMaxRecordingBytes
+    /// (scenario_estimate.hpp, stating the estimate and the keys that drive it).
     void validate(std::string_view prefix = "") const;
 };
 
 /// Reads and validates a scenario file (scenario_schema.hpp). `name` defaults to the file
 /// stem. Throws FileError, ParseError naming file, line and key ("s.yaml: line 4: key
-/// 'world.type': expected one of ..."), or ConfigError prefixed with the file.
+/// 'world.type': expected one of ..."), or ConfigError prefixed with the file. An empty
+/// document (no bytes, only comments, or `~`) is a ParseError, not a default scenario; the
+/// YAML itself is bounded by io::YamlLimits (size, alias expansion, nesting).
 Scenario load_scenario(const std::string& path);
 
 /// Same for YAML text; `name` stands for the file in messages; mesh paths are relative to

@@ -24,6 +24,7 @@
 #include <functional>
 #include <string>
 
+#include <scantling/core/error.hpp>
 #include <scantling/sim/recording_writer.hpp>
 #include <scantling/sim/scenario.hpp>
 
@@ -38,8 +39,17 @@ struct ScenarioProgress {
 struct ScenarioRunOptions {
     /// Called after the world is built, about once per simulated second, and at the end.
     std::function<void(const ScenarioProgress&)> progress;
-    /// Allow writing into a non-empty directory (see RecordingWriter).
+    /// Replace an existing recording at the directory (see RecordingWriter).
     bool overwrite = false;
+    /// Polled between ticks and before the recording is moved into place: when it returns
+    /// true the run stops with ScenarioInterrupted (e.g. a flag set by a SIGINT handler).
+    std::function<bool()> stop_requested = {};  // "= {}": may be left out of {.x = ...}
+};
+
+/// The run was stopped by ScenarioRunOptions::stop_requested; no recording was written.
+class ScenarioInterrupted : public Error {
+  public:
+    using Error::Error;
 };
 
 struct ScenarioRunResult {
@@ -53,9 +63,13 @@ struct ScenarioRunResult {
 /// Simulated duration of a scenario: `duration_s`, or the trajectory's when it is 0.
 double scenario_duration_s(const Scenario& scenario);
 
-/// Builds the world, simulates and writes the recording to `directory`. Throws ConfigError
-/// for an invalid scenario, FileError when the directory is not empty (without overwrite) or a
-/// file cannot be written. The directory is created only after the world was built.
+/// Builds the world, simulates and writes the recording to `directory`, all or nothing: the
+/// files go to a temporary folder beside it that is renamed to `directory` at the end
+/// (RecordingWriter). Throws ConfigError for an invalid scenario, FileError when the directory
+/// is not empty (without overwrite), is not a recording (with overwrite) or a file cannot be
+/// written (with the OS reason, e.g. "No space left on device"), ScenarioInterrupted when
+/// stopped; in every case no partial recording is left and an existing one is untouched.
+/// The temporary folder is created only after the world was built.
 ScenarioRunResult run_scenario(const Scenario& scenario, const std::string& directory,
                                const ScenarioRunOptions& options = {});
 

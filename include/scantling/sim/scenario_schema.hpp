@@ -3,6 +3,10 @@
 /// The YAML schema of a scenario (io::ConfigSchema): every key, its type, range and doc.
 /// `scantling sim --describe`-style documentation comes from `scenario_schema().describe()`.
 ///
+/// Every key that sizes the run (durations, rates, image sizes, world extents, counts,
+/// spacings) has a range bounded by scenario_limits.hpp, so an absurd value is a ParseError
+/// naming the file, line, key and bound before anything is built.
+///
 /// Besides the table-driven checks (unknown keys, wrong types, ranges: ParseError naming file,
 /// line and key), `check_scenario_document` enforces what a table cannot: only the section of
 /// the selected `type` may appear (`world.storage_tank` next to `type: cylinder` is an error),
@@ -13,6 +17,7 @@
 #include <scantling/io/config_node.hpp>
 #include <scantling/io/config_schema.hpp>
 #include <scantling/sim/scenario.hpp>
+#include <scantling/sim/scenario_limits.hpp>
 
 namespace scantling::sim {
 
@@ -24,6 +29,24 @@ const io::ConfigSchema<Scenario>& scenario_schema();
 void check_scenario_document(const io::ConfigNode& root);
 
 namespace detail {
+
+/// [0, max]: a size where 0 means the model's default, or a non-negative bounded value.
+constexpr io::Range up_to(double max) { return io::Range{.min = 0.0, .max = max}; }
+/// (0, max]: a length, radius or rate bounded by scenario_limits.hpp.
+constexpr io::Range positive_up_to(double max) {
+    return io::Range{.min = 0.0, .min_exclusive = true, .max = max};
+}
+/// [min, max]: a count or a spacing with a floor.
+constexpr io::Range between(double min, double max) { return io::Range{.min = min, .max = max}; }
+/// A world extent (length, width, height, radius, diameter, margin): (0, kMaxWorldExtent_m].
+inline constexpr io::Range kExtent = positive_up_to(limits::kMaxWorldExtent_m);
+/// A spacing of repeated structure: [kMinStructureSpacing_m, kMaxWorldExtent_m].
+inline constexpr io::Range kSpacing =
+    between(limits::kMinStructureSpacing_m, limits::kMaxWorldExtent_m);
+/// A coordinate: [-kMaxCoordinate_m, kMaxCoordinate_m] (every element of a vector).
+inline constexpr io::Range kCoordinate =
+    between(-limits::kMaxCoordinate_m, limits::kMaxCoordinate_m);
+
 const io::ConfigSchema<WorldSpec>& world_spec_schema();
 const io::ConfigSchema<VehicleSpec>& vehicle_spec_schema();
 const io::ConfigSchema<SensorSpec>& sensor_spec_schema();

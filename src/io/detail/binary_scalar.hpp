@@ -33,6 +33,44 @@ constexpr bool is_integer(ScalarType type) {
     return type != ScalarType::kF32 && type != ScalarType::kF64;
 }
 
+/// Name for messages: "uint8", "int32", "float64", ...
+constexpr const char* scalar_type_name(ScalarType type) {
+    constexpr const char* kNames[] = {"int8",   "uint8", "int16",  "uint16",  "int32",
+                                      "uint32", "int64", "uint64", "float32", "float64"};
+    return kNames[static_cast<std::size_t>(type)];
+}
+
+/// Whether an integer read from text is representable in `type` (an ascii body must not hold
+/// values its declared type cannot store: "uint8" with 300 is a lying header, not a colour).
+/// Floating types hold every integer the text parsers return.
+constexpr bool integer_fits(ScalarType type, std::int64_t value) {
+    switch (type) {
+        case ScalarType::kI8:
+            return value >= INT8_MIN && value <= INT8_MAX;
+        case ScalarType::kU8:
+            return value >= 0 && value <= UINT8_MAX;
+        case ScalarType::kI16:
+            return value >= INT16_MIN && value <= INT16_MAX;
+        case ScalarType::kU16:
+            return value >= 0 && value <= UINT16_MAX;
+        case ScalarType::kI32:
+            return value >= INT32_MIN && value <= INT32_MAX;
+        case ScalarType::kU32:
+            return value >= 0 && value <= std::int64_t{UINT32_MAX};
+        case ScalarType::kU64:
+            return value >= 0;
+        default:
+            return true;
+    }
+}
+
+/// Same for a value parsed as unsigned (UINT64 values above INT64_MAX included).
+constexpr bool integer_fits(ScalarType type, std::uint64_t value) {
+    if (type == ScalarType::kU64 || !is_integer(type)) return true;
+    return value <= std::uint64_t{INT64_MAX} &&
+           integer_fits(type, static_cast<std::int64_t>(value));
+}
+
 /// `size` bytes at `bytes`, reversed when the data's byte order differs from the host's.
 template <typename T>
 T load_scalar(const unsigned char* bytes, std::endian order) {

@@ -26,17 +26,6 @@ struct PlyRowContext {
     }
 };
 
-/// Rejects absurd row counts (more rows than bytes left) before anything is allocated;
-/// ordinary truncation is reported where the data actually ends.
-inline void check_rows_fit(const PlyElement& element, std::size_t remaining,
-                           const std::string& path, const FileLocation& where) {
-    if (element.count <= remaining || element.properties.empty()) return;
-    throw ParseError(path, where,
-                     "element '" + element.name + "' declares " + std::to_string(element.count) +
-                         " rows, but only " + std::to_string(remaining) +
-                         " bytes follow the header (truncated file or wrong count)");
-}
-
 class BinaryPlySource {
   public:
     BinaryPlySource(const std::string& bytes, std::size_t start, std::endian order,
@@ -52,9 +41,8 @@ class BinaryPlySource {
     void begin_row() {}
     void end_row() {}
 
-    void check_room(const PlyElement& element) const {
-        check_rows_fit(element, size_ - pos_, path_, location());
-    }
+    /// How many values of `type` the rest of the data can hold (bounds a list length).
+    std::size_t max_items(ScalarType type) const { return (size_ - pos_) / scalar_size(type); }
 
     double scalar(ScalarType type) {
         const std::size_t n = scalar_size(type);
@@ -94,46 +82,47 @@ class BinaryPlySource {
     const std::string& path_;
 };
 
+/// One row per line; tokens are taken one at a time (TokenCursor), so a hostile line of
+/// millions of values costs no memory.
 class AsciiPlySource {
   public:
     AsciiPlySource(const std::string& bytes, std::size_t start, int first_line,
                    const std::string& path)
-        : reader_(bytes, start, first_line), remaining_(bytes.size() - start), path_(path) {
+        : reader_(bytes, start, first_line), path_(path) {
         line_.number = first_line - 1;
     }
 
     PlyRowContext context;
 
-    void check_room(const PlyElement& element) const {
-        check_rows_fit(element, remaining_, path_, location());
-    }
-
     void begin_row() {
         if (!next_non_empty()) fail("file ends before " + context.describe());
-        split_tokens(line_.text, tokens_);
-        next_ = 0;
+        cursor_ = TokenCursor(line_.text);
+        taken_ = 0;
     }
 
     void end_row() {
-        if (next_ < tokens_.size()) {
-            fail("found " + std::to_string(tokens_.size()) + " values for " + context.describe() +
-                 ", expected " + std::to_string(next_));
-        }
+        std::string_view extra;
+        if (!cursor_.next(extra)) return;
+        fail("found " + std::to_string(taken_ + 1 + count_tokens_left()) + " values for " +
+             context.describe() + ", expected " + std::to_string(taken_));
     }
 
+    /// How many more values the rest of the line can hold (bounds a list length).
+    std::size_t max_items(ScalarType) const { return (cursor_.remaining_chars() + 1) / 2; }
+
     double scalar(ScalarType type) {
-        if (next_ >= tokens_.size()) {
-            fail("too few values for " + context.describe() + ": found " +
-                 std::to_string(tokens_.size()));
+        std::string_view token;
+        if (!cursor_.next(token)) {
+            fail("too few values for " + context.describe() + ": found " + std::to_string(taken_));
         }
-        const std::string_view token = tokens_[next_++];
+        ++taken_;
         const LineContext where{path_, line_};
         if (type == ScalarType::kF32) {
             // A float property holds the float nearest to the text, not the nearest double.
             return static_cast<float>(parse_double(token, where, NonFinite::kAllow));
         }
         if (type == ScalarType::kF64) return parse_double(token, where, NonFinite::kAllow);
-        return static_cast<double>(parse_int(token, where));
+        return parse_integer(token, type, where);
     }
 
     void finish() {
@@ -153,15 +142,32 @@ class AsciiPlySource {
         return false;
     }
 
+    std::size_t count_tokens_left() const {
+        TokenCursor rest = cursor_;
+        std::size_t n = 0;
+        for (std::string_view token; rest.next(token);) ++n;
+        return n;
+    }
+
+    /// An integer the declared type can hold ("uchar" with 300 is a lying header).
+    static double parse_integer(std::string_view token, ScalarType type, const LineContext& where) {
+        if (type == ScalarType::kU64) return static_cast<double>(parse_uint(token, where));
+        const std::int64_t value = parse_int(token, where);
+        if (!integer_fits(type, value)) {
+            throw_bad_token(token, where,
+                            std::string("a value that fits ") + scalar_type_name(type));
+        }
+        return static_cast<double>(value);
+    }
+
     [[noreturn]] void fail(const std::string& what) const {
         throw ParseError(path_, location(), what);
     }
 
     LineReader reader_;
     TextLine line_;
-    std::vector<std::string_view> tokens_;
-    std::size_t next_ = 0;
-    std::size_t remaining_;  // bytes after the header; bounds the plausible row counts
+    TokenCursor cursor_;
+    std::size_t taken_ = 0;  // values taken from the current row
     const std::string& path_;
 };
 

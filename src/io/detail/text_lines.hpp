@@ -45,10 +45,33 @@ struct LineContext {
 
 std::string_view trim(std::string_view text);
 
+/// The whitespace-separated tokens of one line, one at a time and without storing them: a line
+/// of a hostile file may hold millions of tokens, and a vector of views costs 16 bytes each.
+class TokenCursor {
+  public:
+    explicit TokenCursor(std::string_view text = {}) : text_(text) {}
+
+    /// Next token into `token`; false when the line holds no more.
+    bool next(std::string_view& token);
+    /// Characters not yet consumed; k more tokens need at least 2k - 1 of them.
+    std::size_t remaining_chars() const { return text_.size() - pos_; }
+
+  private:
+    std::string_view text_;
+    std::size_t pos_ = 0;
+};
+
+/// Number of whitespace-separated tokens in `text` (no allocation).
+std::size_t count_tokens(std::string_view text);
+
 /// Whitespace-separated tokens (spaces, tabs, '\r').
 std::vector<std::string_view> split_tokens(std::string_view text);
 /// Same, into a reused vector (no allocation once it has grown).
 void split_tokens(std::string_view text, std::vector<std::string_view>& tokens);
+/// Exactly `expected` tokens of `text` into `tokens`; a line holding another number is refused
+/// (expect_token_count) before anything is stored, so an absurdly long line costs no memory.
+void split_exactly(std::string_view text, std::vector<std::string_view>& tokens,
+                   std::size_t expected, const LineContext& where, std::string_view what);
 
 /// `text` up to the first `marker` (comments), trimmed.
 std::string_view strip_comment(std::string_view text, char marker = '#');
@@ -63,7 +86,14 @@ double parse_double(std::string_view token, const LineContext& where,
 std::int64_t parse_int(std::string_view token, const LineContext& where);
 std::uint64_t parse_uint(std::string_view token, const LineContext& where);
 
-/// Throws ParseError at `where` unless `tokens` has exactly `expected` entries.
+/// Throws ParseError naming file, line, column and the token: "invalid token '<token>',
+/// expected <expected>".
+[[noreturn]] void throw_bad_token(std::string_view token, const LineContext& where,
+                                  std::string_view expected);
+
+/// Throws ParseError at `where` unless `found` (the number of tokens) equals `expected`.
+void expect_token_count(std::size_t found, std::size_t expected, const LineContext& where,
+                        std::string_view what);
 void expect_token_count(const std::vector<std::string_view>& tokens, std::size_t expected,
                         const LineContext& where, std::string_view what);
 
