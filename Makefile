@@ -7,7 +7,8 @@ CMAKE_FLAGS ?=
 
 SOURCES = $(shell git ls-files '*.cpp' '*.hpp' 2>/dev/null || find include src apps tests bench -name '*.[ch]pp')
 
-.PHONY: all deps configure build build-app run test bench format format-check lint clean
+.PHONY: all deps configure build build-app run test test-asan fuzz bench format format-check lint \
+	clean
 
 all: build
 
@@ -42,6 +43,28 @@ run: build-app
 test: build
 	ctest --test-dir $(BUILD_DIR) --output-on-failure -j $(JOBS)
 
+# The whole test suite under AddressSanitizer + UndefinedBehaviorSanitizer (g++, -O1, line
+# tables only: a fast build whose reports still name file and line). docs/fuzzing.md.
+ASAN_DIR ?= build-asan
+SANITIZE ?= address,undefined
+ASAN_CXX_FLAGS ?= -O1 -g1 -DNDEBUG
+# Also set while building: gtest_discover_tests runs each test executable after linking it.
+SANITIZER_ENV = ASAN_OPTIONS=$(ASAN_OPTIONS_DEFAULT) UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+	LSAN_OPTIONS=suppressions=$(CURDIR)/scripts/sanitizers/lsan.supp:print_suppressions=0
+ASAN_OPTIONS_DEFAULT = detect_leaks=1:check_initialization_order=1:strict_init_order=1:detect_stack_use_after_return=1
+test-asan: deps
+	cmake -S . -B $(ASAN_DIR) -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE="$(ASAN_CXX_FLAGS)" \
+	  -DSCANTLING_SANITIZE=$(SANITIZE) -DSCANTLING_WERROR=OFF $(CMAKE_FLAGS)
+	env $(SANITIZER_ENV) cmake --build $(ASAN_DIR) -j $(JOBS)
+	env $(SANITIZER_ENV) ctest --test-dir $(ASAN_DIR) --output-on-failure -j $(JOBS)
+
+# libFuzzer targets, one per reader (clang, ASan + UBSan), each run FUZZ_SECONDS on a seed
+# corpus built from ../shared/data and the repository's files; fails with the reproducer's path.
+FUZZ_DIR ?= build-fuzz
+FUZZ_SECONDS ?= 60
+fuzz: deps
+	FUZZ_DIR=$(FUZZ_DIR) FUZZ_SECONDS=$(FUZZ_SECONDS) JOBS=$(JOBS) ./scripts/run-fuzzers.sh
+
 bench:
 	./scripts/install-deps.sh --bench
 	cmake -S . -B $(BENCH_DIR) -DCMAKE_BUILD_TYPE=Release -DSCANTLING_BUILD_BENCH=ON -DSCANTLING_BUILD_TESTS=OFF
@@ -58,4 +81,4 @@ lint: configure
 	clang-tidy -p $(BUILD_DIR) --quiet $(filter %.cpp,$(SOURCES))
 
 clean:
-	rm -rf $(BUILD_DIR) $(BENCH_DIR)
+	rm -rf $(BUILD_DIR) $(BENCH_DIR) $(ASAN_DIR) $(FUZZ_DIR)

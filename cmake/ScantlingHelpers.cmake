@@ -5,6 +5,27 @@ function(scantling_set_target_options target)
   if(SCANTLING_WERROR)
     target_compile_options(${target} PRIVATE -Werror)
   endif()
+  scantling_apply_sanitizers(${target})
+endfunction()
+
+# Sanitizers on one target (SCANTLING_SANITIZE, e.g. "address,undefined": `make test-asan`,
+# `make fuzz`; docs/fuzzing.md). A library hands the sanitizer runtime on to whatever links it
+# (tests, the CLI, an installed find_package consumer), since its objects call into it.
+# SCANTLING_FUZZ adds libFuzzer's coverage instrumentation (clang only) without its main().
+function(scantling_apply_sanitizers target)
+  if(SCANTLING_SANITIZE)
+    target_compile_options(${target} PRIVATE -fsanitize=${SCANTLING_SANITIZE}
+      -fno-sanitize-recover=all -fno-omit-frame-pointer)
+    get_target_property(type ${target} TYPE)
+    if(type STREQUAL "EXECUTABLE")
+      target_link_options(${target} PRIVATE -fsanitize=${SCANTLING_SANITIZE})
+    else()
+      target_link_options(${target} INTERFACE -fsanitize=${SCANTLING_SANITIZE})
+    endif()
+  endif()
+  if(SCANTLING_FUZZ)
+    target_compile_options(${target} PRIVATE -fsanitize=fuzzer-no-link)
+  endif()
 endfunction()
 
 # scantling_add_module(<name> SOURCES a.cpp ... PUBLIC_DEPS ... PRIVATE_DEPS ...)

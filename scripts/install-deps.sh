@@ -11,6 +11,8 @@ packages=(
   libeigen3-dev libnanoflann-dev libtbb-dev libyaml-cpp-dev nlohmann-json3-dev
   libcli11-dev libspdlog-dev libfmt-dev libgtest-dev libgmock-dev libbenchmark-dev
   libassimp-dev libembree-dev libceres-dev liboctomap-dev zlib1g-dev libpng-dev
+  # make fuzz: clang with libFuzzer and the ASan/UBSan runtimes (libclang_rt.fuzzer-x86_64.a)
+  clang-14 libclang-rt-14-dev
 )
 if [[ "${1:-}" == "--bench" ]]; then
   packages+=(libopen3d-dev)

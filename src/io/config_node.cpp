@@ -1,11 +1,13 @@
 #include <scantling/io/config_node.hpp>
 
+#include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/yaml.h>
 
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <system_error>
 
@@ -163,25 +165,54 @@ std::string describe_kind(const ConfigNode& node) {
     }
 }
 
+/// Consumes parser events without building nodes: only the document count matters.
+struct DocumentCounter : YAML::EventHandler {
+    void OnDocumentStart(const YAML::Mark&) override {}
+    void OnDocumentEnd() override {}
+    void OnNull(const YAML::Mark&, YAML::anchor_t) override {}
+    void OnAlias(const YAML::Mark&, YAML::anchor_t) override {}
+    void OnScalar(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                  const std::string&) override {}
+    void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                         YAML::EmitterStyle::value) override {}
+    void OnSequenceEnd() override {}
+    void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t,
+                    YAML::EmitterStyle::value) override {}
+    void OnMapEnd() override {}
+};
+
+/// Documents in `text`, counting at most two. Not YAML::LoadAll: yaml-cpp 0.7 yields endless
+/// empty documents for a stray top-level ',' (found by the config fuzzer), so the count is capped.
+int count_documents(const std::string& text) {
+    std::istringstream in(text);
+    YAML::Parser parser(in);
+    DocumentCounter counter;
+    int documents = 0;
+    while (documents < 2 && parser.HandleNextDocument(counter)) ++documents;
+    return documents;
+}
+
 ConfigNode parse_yaml_string(const std::string& text, const std::string& name,
                              const YamlLimits& limits) {
     if (text.size() > limits.max_bytes) refuse_size(name, text.size(), limits);
-    std::vector<YAML::Node> documents;
+    YAML::Node document;
     try {
-        documents = YAML::LoadAll(text);
+        const int documents = count_documents(text);
+        if (documents == 0) {
+            ConfigNode empty;
+            empty.file = name;
+            return empty;
+        }
+        if (documents > 1) {
+            throw ParseError(name, FileLocation{},
+                             "expected one YAML document, found more (a '---' separator or a "
+                             "stray character at the top level)");
+        }
+        document = YAML::Load(text);
     } catch (const YAML::Exception& e) {
         throw ParseError(name, location_of(e.mark), yaml_cpp_message(e));
     }
-    if (documents.size() > 1) {
-        throw ParseError(name, FileLocation{},
-                         "expected one YAML document, found " + std::to_string(documents.size()));
-    }
-    if (documents.empty()) {
-        ConfigNode empty;
-        empty.file = name;
-        return empty;
-    }
-    return Converter(name, limits).convert(documents.front(), 0);
+    return Converter(name, limits).convert(document, 0);
 }
 
 ConfigNode parse_yaml_file(const std::string& path, const YamlLimits& limits) {

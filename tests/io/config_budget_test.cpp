@@ -96,6 +96,20 @@ TEST(ConfigBudget, TextOverTheByteCapIsRefused) {
     EXPECT_EQ(what.rfind("mem.yaml: 12 bytes is more than the 8 bytes", 0), 0u) << what;
 }
 
+// yaml-cpp's LoadAll yields endless empty documents for a stray top-level ',' (the old code
+// hung here, growing memory; found by fuzz/config_fuzz).
+TEST(ConfigBudget, StrayTopLevelCommaIsAParseErrorNotAnEndlessDocumentStream) {
+    for (const char* text : {",", "seed: 1\n,\n", "a: 1\n---\nb: 2\n"}) {
+        try {
+            (void)parse_yaml_string(text, "comma.yaml");
+            ADD_FAILURE() << "accepted: " << text;
+        } catch (const ParseError& e) {
+            EXPECT_NE(std::string(e.what()).find("comma.yaml"), std::string::npos) << e.what();
+        }
+    }
+    EXPECT_EQ(parse_yaml_string("seed: 1\n", "one.yaml").kind, ConfigNode::Kind::kMap);
+}
+
 TEST(ConfigBudget, DeepNestingIsAParseErrorNamingTheDepth) {
     // yaml-cpp's own recursion guard stops at 2000 levels (its message was "bad file").
     const std::string flow(100'000, '[');
