@@ -6,6 +6,8 @@
 # Environment:
 #   FUZZ_DIR        build folder (build-fuzz)
 #   FUZZ_SECONDS    fuzzing time per target (60)
+#   FUZZ_SEED       libFuzzer's random seed (1: the same mutations every run, so a CI finding
+#                   is reproducible; 0 lets libFuzzer pick one, for wider local runs)
 #   FUZZ_TARGETS    targets to run (all: pcd ply kitti_bin kitti_poses tum config scenario recording)
 #   JOBS            fuzzers run side by side, and build jobs (nproc)
 #   FUZZ_KEEP_GOING 1: keep fuzzing after a finding (libFuzzer -fork) to collect several
@@ -16,6 +18,7 @@ cd "$(dirname "$0")/.."
 root="$(pwd)"
 fuzz_dir="$(mkdir -p "${FUZZ_DIR:-build-fuzz}" && cd "${FUZZ_DIR:-build-fuzz}" && pwd)"
 seconds="${FUZZ_SECONDS:-60}"
+fuzz_seed="${FUZZ_SEED:-1}"
 jobs="${JOBS:-$(nproc)}"
 read -r -a targets <<< "${FUZZ_TARGETS:-pcd ply kitti_bin kitti_poses tum config scenario recording}"
 cxx="${CXX_FUZZ:-clang++-14}"
@@ -58,7 +61,7 @@ dict_of() {
 run_one() {
   local t="$1" findings="$fuzz_dir/findings/$1" corpus="$fuzz_dir/corpus/$1"
   local args=("${limits[@]}" -max_total_time="$seconds" -max_len="$(max_len "$t")"
-              -artifact_prefix="$findings/" -print_final_stats=1)
+              -artifact_prefix="$findings/" -print_final_stats=1 -seed="$fuzz_seed")
   [[ -z "$(dict_of "$t")" ]] || args+=(-dict="$(dict_of "$t")")
   [[ "${FUZZ_KEEP_GOING:-0}" == 1 ]] && args+=(-fork=1 -ignore_crashes=1 -ignore_ooms=1 -ignore_timeouts=1)
   mkdir -p "$findings" "$corpus" "$scratch/$t"
