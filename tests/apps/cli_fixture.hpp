@@ -20,6 +20,18 @@ namespace scantling::cli_test {
 
 namespace fs = std::filesystem;
 
+/// Half a second of a small LiDAR and an IMU in the cylinder: the quickest full recording.
+inline constexpr const char* kTinyScenario = R"(world: {type: cylinder}
+vehicle:
+  type: scripted
+  trajectory: {type: helix, helix: {radius_m: 3.0, z0_m: 1.0}}
+sensors:
+  - {type: spinning_lidar, columns: 512, rate_hz: 10}
+  - {type: imu}
+duration_s: 0.5
+export: {map_spacing_m: 0.2}
+)";
+
 struct CliRun {
     int exit_code = -1;
     std::string out;

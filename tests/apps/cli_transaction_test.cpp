@@ -19,17 +19,6 @@
 namespace scantling::cli_test {
 namespace {
 
-const char* const kTinyScenario = R"(world: {type: cylinder}
-vehicle:
-  type: scripted
-  trajectory: {type: helix, helix: {radius_m: 3.0, z0_m: 1.0}}
-sensors:
-  - {type: spinning_lidar, columns: 512, rate_hz: 10}
-  - {type: imu}
-duration_s: 0.5
-export: {map_spacing_m: 0.2}
-)";
-
 // Minutes of simulated time: still running when the test interrupts it after the first
 // progress line, whatever the machine.
 const char* const kLongScenario = R"(world: {type: cylinder}
