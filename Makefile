@@ -70,6 +70,7 @@ bench:
 	cmake -S . -B $(BENCH_DIR) -DCMAKE_BUILD_TYPE=Release -DSCANTLING_BUILD_BENCH=ON -DSCANTLING_BUILD_TESTS=OFF
 	cmake --build $(BENCH_DIR) -j $(JOBS)
 	./scripts/run-benchmarks.sh $(BENCH_DIR)
+	./scripts/odometry-vs-kiss.sh $(BENCH_DIR)
 
 format:
 	clang-format -i $(SOURCES)

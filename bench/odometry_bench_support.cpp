@@ -55,9 +55,7 @@ const SweepSequence::Data& SweepSequence::data() const {
 
 odometry::LiodomConfig liodom_config(const std::string& preset, int threads) {
     odometry::LiodomConfig config = odometry::liodom_preset(preset);
-    config.parallel.num_threads = threads;
-    config.features.parallel.num_threads = threads;
-    config.registration.parallel.num_threads = threads;
+    config.set_num_threads(threads);
     return config;
 }
 

@@ -15,7 +15,8 @@ packages=(
   clang-14 libclang-rt-14-dev
 )
 if [[ "${1:-}" == "--bench" ]]; then
-  packages+=(libopen3d-dev)
+  # Open3D for the in-process baselines; robin-map for KISS-ICP built from ../shared/baselines
+  packages+=(libopen3d-dev robin-map-dev)
 elif [[ $# -gt 0 ]]; then
   echo "install-deps.sh: unknown option '$1' (expected --bench or nothing)" >&2
   exit 2

@@ -50,7 +50,7 @@ odo::LiodomConfig resolve_config(const OdometryOptions& options) {
     if (options.config_path && options.preset_given) {
         throw ConfigError("--preset and --config are exclusive (a config file names its preset)");
     }
-    if (options.num_threads != 0) config.parallel.num_threads = options.num_threads;
+    if (options.num_threads != 0) config.set_num_threads(options.num_threads);
     config.validate();
     return config;
 }

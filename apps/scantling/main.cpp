@@ -11,6 +11,7 @@
 #include <limits>
 #include <string>
 
+#include <scantling/core/parallel.hpp>
 #include <scantling/core/text_escape.hpp>
 
 #include "scantling/commands.hpp"
@@ -329,7 +330,11 @@ int run_main(int argc, char** argv) {
     }
     scantling::app::set_up_logging(cl.verbose);
     const scantling::app::EscapedOutput escaped_stdout(std::cout);
-    run(cl);
+    // One task arena of --threads for the whole command: the parallel loops inside share its
+    // workers instead of each building an arena of its own (core/parallel.hpp).
+    scantling::ParallelConfig threads;
+    threads.num_threads = cl.num_threads;
+    scantling::with_threads(threads, [&cl] { run(cl); });
     return 0;
 }
 

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <utility>
 
 #include <fmt/format.h>
@@ -118,6 +119,32 @@ std::size_t KdTree::knn(const Eigen::Vector3d& query, std::size_t k,
     distances_sq_m2.resize(count);
     if (count == 0) return 0;
     impl_->index.knnSearch(query.data(), count, indices.data(), distances_sq_m2.data());
+    impl_->to_input(indices.data(), count);
+    return count;
+}
+
+std::size_t KdTree::knn_within(const Eigen::Vector3d& query, std::size_t k, double max_distance_m,
+                               std::vector<std::size_t>& indices,
+                               std::vector<double>& distances_sq_m2) const {
+    if (!(max_distance_m >= 0.0) || !std::isfinite(max_distance_m)) {
+        throw ConfigError(
+            fmt::format("kdtree.max_distance_m = {}, expected finite >= 0", max_distance_m));
+    }
+    const std::size_t capacity = std::min(k, size());
+    indices.resize(capacity);
+    distances_sq_m2.resize(capacity);
+    if (capacity == 0) return 0;
+    nanoflann::KNNResultSet<double, std::size_t> found(capacity);
+    found.init(indices.data(), distances_sq_m2.data());
+    // The result set's worst distance is the pruning bound: start it at the limit instead of
+    // infinity. nanoflann keeps points strictly closer than the bound, so the bound is the next
+    // double above the limit: a point exactly at max_distance_m is kept, as knn() would.
+    distances_sq_m2[capacity - 1] =
+        std::nextafter(max_distance_m * max_distance_m, std::numeric_limits<double>::infinity());
+    impl_->index.findNeighbors(found, query.data(), nanoflann::SearchParams());
+    const std::size_t count = found.size();
+    indices.resize(count);
+    distances_sq_m2.resize(count);
     impl_->to_input(indices.data(), count);
     return count;
 }

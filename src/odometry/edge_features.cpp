@@ -208,8 +208,46 @@ bool parallel_to_beam(const RingPoints& rp, int k, double tan_max_incidence) {
 struct RingEdges {
     Indices index;
     std::vector<float> curvature;
+    Indices plane_index;
     std::size_t num_in_range = 0;
 };
+
+/// Per sector, the lowest-curvature reliable points (at most max_planes_per_sector), each
+/// suppressing its neighbours within the curvature window, so that they spread along the ring.
+std::vector<int> select_planes(const RingPoints& rp, const std::vector<float>& c,
+                               const EdgeExtractionConfig& config) {
+    const int n = rp.size();
+    const int h = config.curvature_half_window;
+    const bool check = config.reject_unreliable;
+    const std::vector<char> occluded = check ? occluded_points(rp, h) : std::vector<char>();
+    const double tan_max_incidence = std::tan(config.max_incidence_rad);
+    auto eligible = [&](int k) {
+        if (!(c[k] <= config.max_plane_curvature)) return false;  // also NaN: no full window
+        return !check || (!occluded[k] && !parallel_to_beam(rp, k, tan_max_incidence));
+    };
+    std::vector<char> suppressed(static_cast<std::size_t>(n), 0);
+    std::vector<int> picked, candidates;
+    for (int s = 0; s < config.num_sectors; ++s) {
+        const int begin = static_cast<int>(static_cast<long long>(n) * s / config.num_sectors);
+        const int end = static_cast<int>(static_cast<long long>(n) * (s + 1) / config.num_sectors);
+        candidates.clear();
+        for (int k = begin; k < end; ++k) {
+            if (eligible(k)) candidates.push_back(k);
+        }
+        auto flatter = [&](int a, int b) { return c[a] < c[b] || (c[a] == c[b] && a < b); };
+        std::sort(candidates.begin(), candidates.end(), flatter);
+        int count = 0;
+        for (int k : candidates) {
+            if (count >= config.max_planes_per_sector) break;
+            if (suppressed[k]) continue;
+            picked.push_back(k);
+            ++count;
+            for (int j = std::max(0, k - h); j <= std::min(n - 1, k + h); ++j) suppressed[j] = 1;
+        }
+    }
+    std::sort(picked.begin(), picked.end());
+    return picked;
+}
 
 /// Per sector, the highest-curvature reliable candidates, suppressing the neighbours of each
 /// pick within its segment. Returns positions in the ring, ascending.
@@ -265,6 +303,11 @@ RingEdges extract_ring(const PointCloud& sweep, const Indices& ring, const std::
         edges.index.push_back(rp.index[k]);
         edges.curvature.push_back(c[k]);
     }
+    if (config.max_planes_per_sector > 0) {
+        for (int k : select_planes(rp, c, config)) {
+            edges.plane_index.push_back(rp.index[k]);
+        }
+    }
     return edges;
 }
 
@@ -295,6 +338,10 @@ void EdgeExtractionConfig::validate(std::string_view prefix) const {
             range_jump_ratio, "finite > 0");
     require(max_incidence_rad > 0.0 && max_incidence_rad < std::numbers::pi / 2, prefix,
             "max_incidence_rad", max_incidence_rad, "in (0, pi/2)");
+    require(max_planes_per_sector >= 0, prefix, "max_planes_per_sector", max_planes_per_sector,
+            ">= 0");
+    require(max_plane_curvature >= 0.0 && std::isfinite(max_plane_curvature), prefix,
+            "max_plane_curvature", max_plane_curvature, "finite >= 0");
     rings.validate(std::string(prefix) + ".rings");
     parallel.validate(std::string(prefix) + ".parallel");
 }
@@ -319,6 +366,10 @@ EdgeFeatures extract_edges(const PointCloud& sweep, const EdgeExtractionConfig& 
             features.ranges_m.push_back(sweep.points[i].norm());
             if (sweep.has_times()) features.times_s.push_back(sweep.times_s[i]);
             features.curvatures.push_back(ring.curvature[e]);
+        }
+        for (const std::uint32_t i : ring.plane_index) {
+            features.plane_points.push_back(sweep.points[i]);
+            features.plane_ranges_m.push_back(sweep.points[i].norm());
         }
     }
     return features;

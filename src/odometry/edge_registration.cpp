@@ -51,15 +51,73 @@ NormalEquations linearize(const EdgeFeatures& edges, const std::vector<EdgeLine>
     return ne;
 }
 
+/// Adds the point-to-plane residuals n·(T p − c) of the planar points to `ne`.
+void add_planes(const EdgeFeatures& edges, const std::vector<SurfacePatch>& patches,
+                const std::vector<double>& weights, const Eigen::Isometry3d& T,
+                double huber_delta_m, NormalEquations& ne) {
+    for (std::size_t i = 0; i < patches.size(); ++i) {
+        if (!patches[i].valid) continue;
+        const Eigen::Vector3d q = T * edges.plane_points[i];
+        const Eigen::Vector3d& n = patches[i].normal;
+        const double d = n.dot(q - patches[i].centroid);
+        const double s = weights[i] * std::abs(d);
+        const double huber = s <= huber_delta_m ? 1.0 : huber_delta_m / s;
+        const double w = huber * weights[i] * weights[i];
+        Vector6d J;
+        J.head<3>() = n;
+        J.tail<3>() = q.cross(n);  // n^T (-hat(q)) as a column
+        ne.H.noalias() += w * J * J.transpose();
+        ne.g.noalias() += w * J * d;
+        ne.sum_sq_distance += d * d;
+        ++ne.count;
+    }
+}
+
+/// The normal equations of every valid edge and planar correspondence at T.
+NormalEquations linearize_all(const EdgeFeatures& edges, const std::vector<EdgeLine>& lines,
+                              const std::vector<double>& weights,
+                              const std::vector<SurfacePatch>& patches,
+                              const std::vector<double>& plane_weights, const Eigen::Isometry3d& T,
+                              double huber_delta_m) {
+    NormalEquations ne = linearize(edges, lines, weights, T, huber_delta_m);
+    add_planes(edges, patches, plane_weights, T, huber_delta_m, ne);
+    return ne;
+}
+
 }  // namespace
+
+SurfacePatch fit_surface_patch(const LocalMap& map, const Eigen::Vector3d& query,
+                               const EdgeRegistrationConfig& config,
+                               std::vector<Eigen::Vector3d>& points,
+                               std::vector<double>& distances) {
+    SurfacePatch patch;
+    const auto k = static_cast<std::size_t>(config.num_neighbors);
+    if (map.knn_within(query, k, config.max_neighbor_distance_m, points, distances) < k) {
+        return patch;
+    }
+    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    for (const auto& p : points) mean += p;
+    mean /= static_cast<double>(k);
+    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+    for (const auto& p : points) cov += (p - mean) * (p - mean).transpose();
+    cov /= static_cast<double>(k);
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+    eig.computeDirect(cov);
+    const Eigen::Vector3d& lambda = eig.eigenvalues();  // ascending
+    if (!(lambda(1) > 0.0) || lambda(1) < config.plane_eigen_ratio * lambda(0)) return patch;
+    patch.centroid = mean;
+    patch.normal = eig.eigenvectors().col(0).normalized();
+    patch.valid = true;
+    return patch;
+}
 
 EdgeLine fit_edge_line(const LocalMap& map, const Eigen::Vector3d& query,
                        const EdgeRegistrationConfig& config, std::vector<Eigen::Vector3d>& points,
                        std::vector<double>& distances) {
     EdgeLine line;
     const auto k = static_cast<std::size_t>(config.num_neighbors);
-    if (map.knn(query, k, points, distances) < k) return line;
-    if (distances.back() > config.max_neighbor_distance_m * config.max_neighbor_distance_m) {
+    // Neighbours beyond the limit would reject the line anyway: the bounded search skips them.
+    if (map.knn_within(query, k, config.max_neighbor_distance_m, points, distances) < k) {
         return line;
     }
     Eigen::Vector3d mean = Eigen::Vector3d::Zero();
@@ -91,10 +149,14 @@ void EdgeRegistrationConfig::validate(std::string_view prefix) const {
             "max_neighbor_distance_m", max_neighbor_distance_m, "> 0");
     require(line_eigen_ratio >= 1.0 && std::isfinite(line_eigen_ratio), p, "line_eigen_ratio",
             line_eigen_ratio, ">= 1");
+    require(plane_eigen_ratio > 1.0 && std::isfinite(plane_eigen_ratio), p, "plane_eigen_ratio",
+            plane_eigen_ratio, "> 1");
     require(huber_delta_m > 0.0 && std::isfinite(huber_delta_m), p, "huber_delta_m", huber_delta_m,
             "> 0");
     require(max_iterations >= 1, p, "max_iterations", max_iterations, ">= 1");
     require(inner_iterations >= 1, p, "inner_iterations", inner_iterations, ">= 1");
+    require(refit_distance_m >= 0.0 && std::isfinite(refit_distance_m), p, "refit_distance_m",
+            refit_distance_m, ">= 0");
     require(min_correspondences >= 6, p, "min_correspondences", min_correspondences, ">= 6");
     require(convergence_translation_m >= 0.0, p, "convergence_translation_m",
             convergence_translation_m, ">= 0");
@@ -107,7 +169,8 @@ void EdgeRegistrationConfig::validate(std::string_view prefix) const {
 
 EdgeRegistrationResult register_edges(const EdgeFeatures& edges, const LocalMap& map,
                                       const Eigen::Isometry3d& T_init, double min_range_m,
-                                      double max_range_m, const EdgeRegistrationConfig& config) {
+                                      double max_range_m, const EdgeRegistrationConfig& config,
+                                      const LocalMap* plane_map) {
     config.validate();
     EdgeRegistrationResult result;
     result.T_world_sensor = T_init;
@@ -127,20 +190,42 @@ EdgeRegistrationResult register_edges(const EdgeFeatures& edges, const LocalMap&
     scale << 1.0, 1.0, 1.0, 1.0 / mean_range, 1.0 / mean_range, 1.0 / mean_range;
     const Matrix6d D = scale.asDiagonal();
 
+    const std::size_t m = plane_map && !plane_map->empty() ? edges.plane_points.size() : 0;
+    std::vector<double> plane_weights(m);
+    for (std::size_t i = 0; i < m; ++i) {
+        const double r = edges.plane_ranges_m[i];
+        plane_weights[i] = edge_range_weight(r, min_range_m, max_range_m, config.range_weighting);
+    }
+
     Eigen::Isometry3d T = T_init;
     std::vector<EdgeLine> lines(n);
+    std::vector<SurfacePatch> patches(m);
+    // Where each edge (then each planar point) was when its line (plane) was fitted.
+    std::vector<Eigen::Vector3d> fitted_at(n + m);
+    const double refit_sq_m2 = config.refit_distance_m * config.refit_distance_m;
     NormalEquations ne;
     for (int outer = 0; outer < config.max_iterations; ++outer) {
-        parallel_for(config.parallel, n, 256, [&](std::size_t begin, std::size_t end) {
+        parallel_for(config.parallel, n + m, 256, [&](std::size_t begin, std::size_t end) {
             std::vector<Eigen::Vector3d> points;
             std::vector<double> distances;
             for (std::size_t i = begin; i < end; ++i) {
-                lines[i] = fit_edge_line(map, T * edges.points[i], config, points, distances);
+                const bool edge = i < n;
+                const Eigen::Vector3d query =
+                    T * (edge ? edges.points[i] : edges.plane_points[i - n]);
+                if (outer > 0 && (query - fitted_at[i]).squaredNorm() <= refit_sq_m2) continue;
+                if (edge) {
+                    lines[i] = fit_edge_line(map, query, config, points, distances);
+                } else {
+                    patches[i - n] =
+                        fit_surface_patch(*plane_map, query, config, points, distances);
+                }
+                fitted_at[i] = query;
             }
         });
         bool converged = false;
         for (int inner = 0; inner < config.inner_iterations; ++inner) {
-            ne = linearize(edges, lines, weights, T, config.huber_delta_m);
+            ne = linearize_all(edges, lines, weights, patches, plane_weights, T,
+                               config.huber_delta_m);
             if (ne.count < static_cast<std::size_t>(config.min_correspondences)) {
                 result.T_world_sensor = T_init;
                 result.num_correspondences = ne.count;
@@ -187,7 +272,7 @@ EdgeRegistrationResult register_edges(const EdgeFeatures& edges, const LocalMap&
     // Thousands of composed updates would drift off SO(3).
     T.linear() = orthonormalize(T.linear());
     // Statistics at the final pose with the last correspondences.
-    ne = linearize(edges, lines, weights, T, config.huber_delta_m);
+    ne = linearize_all(edges, lines, weights, patches, plane_weights, T, config.huber_delta_m);
     result.T_world_sensor = T;
     result.registered = true;
     result.num_correspondences = ne.count;

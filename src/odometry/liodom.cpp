@@ -13,6 +13,12 @@ double elapsed_ms(std::chrono::steady_clock::time_point since) {
         .count();
 }
 
+LocalMapConfig plane_local_map_config(const LiodomConfig& config) {
+    LocalMapConfig c = config.local_map;
+    c.num_recent_sweeps = config.plane_recent_sweeps;
+    return c;
+}
+
 }  // namespace
 
 const char* to_string(FrameStatus status) {
@@ -46,6 +52,10 @@ void LiodomConfig::validate(std::string_view prefix) const {
         throw ConfigError(
             fmt::format("{}.bootstrap_voxel_m = {}, expected >= 0", p, bootstrap_voxel_m));
     }
+    if (plane_recent_sweeps < 0) {
+        throw ConfigError(
+            fmt::format("{}.plane_recent_sweeps = {}, expected >= 0", p, plane_recent_sweeps));
+    }
     if (!(max_speed_mps > 0.0) || !std::isfinite(max_speed_mps)) {
         throw ConfigError(fmt::format("{}.max_speed_mps = {}, expected > 0", p, max_speed_mps));
     }
@@ -53,7 +63,12 @@ void LiodomConfig::validate(std::string_view prefix) const {
 }
 
 LidarOdometry::LidarOdometry(const LiodomConfig& config, const Eigen::Isometry3d& T_odom_initial)
-    : config_(config), map_(config.map), local_map_(config.local_map), T_initial_(T_odom_initial) {
+    : config_(config),
+      map_(config.map),
+      local_map_(config.local_map),
+      plane_map_(config.map),
+      plane_local_map_(plane_local_map_config(config)),
+      T_initial_(T_odom_initial) {
     config_.validate();
 }
 
@@ -132,7 +147,7 @@ FrameReport LidarOdometry::register_and_map(const EdgeFeatures& edges, double st
         registration.remap_degenerate = static_cast<bool>(prior_);
         const EdgeRegistrationResult result =
             register_edges(edges, local_map_, T_pred, config_.features.min_range_m,
-                           config_.features.max_range_m, registration);
+                           config_.features.max_range_m, registration, &plane_local_map_);
         report.register_ms = elapsed_ms(t0);
         report.iterations = result.iterations;
         report.num_correspondences = result.num_correspondences;
@@ -160,6 +175,12 @@ FrameReport LidarOdometry::register_and_map(const EdgeFeatures& edges, double st
     for (std::size_t i = 0; i < world.size(); ++i) world[i] = T * edges.points[i];
     map_.insert(world);
     local_map_.update(map_, T.translation(), std::move(world));
+    if (!edges.plane_points.empty()) {
+        std::vector<Eigen::Vector3d> planes(edges.plane_points.size());
+        for (std::size_t i = 0; i < planes.size(); ++i) planes[i] = T * edges.plane_points[i];
+        plane_map_.insert(planes);
+        plane_local_map_.update(plane_map_, T.translation(), std::move(planes));
+    }
     map_started_ = true;
     report.map_ms = elapsed_ms(t1);
     report.local_map_points = local_map_.size();
@@ -190,7 +211,8 @@ FrameReport LidarOdometry::process(const PointCloud& sweep) {
 
 std::size_t LidarOdometry::memory_bytes() const {
     // The local map's two trees hold ~70 bytes a point (core/kdtree.hpp).
-    return map_.memory_bytes() + local_map_.size() * 70 + sizeof(*this);
+    return map_.memory_bytes() + plane_map_.memory_bytes() +
+           (local_map_.size() + plane_local_map_.size()) * 70 + sizeof(*this);
 }
 
 }  // namespace scantling::odometry

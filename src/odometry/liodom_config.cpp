@@ -64,6 +64,10 @@ ConfigSchema<EdgeExtractionConfig> features_schema() {
                "drop occluded and beam-parallel points (LOAM)")
         .field("max_incidence_rad", &C::max_incidence_rad,
                "beam-to-normal angle above which a point is beam-parallel, rad", kPositive)
+        .field("max_planes_per_sector", &C::max_planes_per_sector,
+               "planar points kept per sector beside the edges (0 = edges only)", kNonNegative)
+        .field("max_plane_curvature", &C::max_plane_curvature,
+               "largest LOAM curvature of a planar point", kNonNegative)
         .section("rings", &C::rings, rings_schema(), "ring organisation")
         .section("parallel", &C::parallel, parallel_schema(), "threads over rings");
     return s;
@@ -77,11 +81,16 @@ ConfigSchema<EdgeRegistrationConfig> registration_schema() {
                "farthest accepted neighbour, m", kPositive)
         .field("line_eigen_ratio", &C::line_eigen_ratio, "lambda1 >= ratio * lambda2 is a line",
                kPositive)
+        .field("plane_eigen_ratio", &C::plane_eigen_ratio,
+               "planar points: lambda2 >= ratio * lambda3 is a plane", kPositive)
         .field("huber_delta_m", &C::huber_delta_m, "Huber threshold on the weighted distance, m",
                kPositive)
         .field("max_iterations", &C::max_iterations, "outer iterations", kPositive)
         .field("inner_iterations", &C::inner_iterations, "Gauss-Newton steps per outer iteration",
                kPositive)
+        .field("refit_distance_m", &C::refit_distance_m,
+               "refit an edge's line once it moved this far since its last fit (0 = always), m",
+               kNonNegative)
         .field("min_correspondences", &C::min_correspondences,
                "fewer: the sweep is carried by the motion model", kPositive)
         .field("convergence_translation_m", &C::convergence_translation_m,
@@ -134,6 +143,8 @@ ConfigSchema<LiodomConfig> liodom_schema() {
                kPositive)
         .field("bootstrap_voxel_m", &C::bootstrap_voxel_m,
                "voxel of the dense GICP that starts the second sweep, m (0 = off)", kNonNegative)
+        .field("plane_recent_sweeps", &C::plane_recent_sweeps,
+               "latest sweeps whose planar points join the planes' local map", kNonNegative)
         .section("parallel", &C::parallel, parallel_schema(), "threads of the pipeline");
     return s;
 }

@@ -1,5 +1,4 @@
 #include <tbb/parallel_pipeline.h>
-#include <tbb/task_arena.h>
 #include <chrono>
 #include <optional>
 #include <scantling/core/error.hpp>
@@ -125,9 +124,12 @@ std::vector<FrameReport> run_odometry(std::size_t num_sweeps, const SweepReader&
     // Two tokens: sweep i+1 is read and its edges extracted while sweep i is registered and
     // mapped. Both filters are serial_in_order, so stage 2 sees the sweeps in order and the
     // result equals the sequential run.
+    // The stages' own parallel loops (rings, edges) run in the pipeline's arena: with an arena
+    // of their own they could not get the second thread while the pipeline holds it.
     std::size_t next = 0;
-    tbb::task_arena arena(threads);
-    arena.execute([&] {
+    ParallelConfig pipeline;
+    pipeline.num_threads = threads;
+    with_threads(pipeline, [&] {
         tbb::parallel_pipeline(
             2, tbb::make_filter<void, std::shared_ptr<Extracted>>(
                    tbb::filter_mode::serial_in_order,

@@ -50,28 +50,57 @@ void LocalMap::update(const mapping::CellMap& map, const Eigen::Vector3d& sensor
     }
 }
 
-std::size_t LocalMap::knn(const Eigen::Vector3d& query, std::size_t k,
-                          std::vector<Eigen::Vector3d>& points,
-                          std::vector<double>& distances_sq_m2) const {
-    // Small fixed buffers: k is a handful, so a merge of two sorted lists beats anything clever.
-    thread_local std::vector<std::size_t> idx_a, idx_b;
-    thread_local std::vector<double> d_a, d_b;
-    const std::size_t na = cells_ ? cells_->knn(query, k, idx_a, d_a) : 0;
-    const std::size_t nb = recent_ ? recent_->knn(query, k, idx_b, d_b) : 0;
+namespace {
+
+/// Merges two nearest-first lists (a: cell part, b: recent part) into the first k of both.
+std::size_t merge_nearest(const KdTree* cells, const std::vector<std::size_t>& idx_a,
+                          const std::vector<double>& d_a, const KdTree* recent,
+                          const std::vector<std::size_t>& idx_b, const std::vector<double>& d_b,
+                          std::size_t k, std::vector<Eigen::Vector3d>& points,
+                          std::vector<double>& distances_sq_m2) {
+    const std::size_t na = idx_a.size(), nb = idx_b.size();
     const std::size_t n = std::min(k, na + nb);
     points.resize(n);
     distances_sq_m2.resize(n);
     std::size_t a = 0, b = 0;
     for (std::size_t i = 0; i < n; ++i) {
         if (b >= nb || (a < na && d_a[a] <= d_b[b])) {
-            points[i] = cells_->points()[idx_a[a]];
+            points[i] = cells->points()[idx_a[a]];
             distances_sq_m2[i] = d_a[a++];
         } else {
-            points[i] = recent_->points()[idx_b[b]];
+            points[i] = recent->points()[idx_b[b]];
             distances_sq_m2[i] = d_b[b++];
         }
     }
     return n;
+}
+
+}  // namespace
+
+std::size_t LocalMap::knn(const Eigen::Vector3d& query, std::size_t k,
+                          std::vector<Eigen::Vector3d>& points,
+                          std::vector<double>& distances_sq_m2) const {
+    // Small per-thread buffers: k is a handful, so a merge of two sorted lists beats anything
+    // clever, and the hot path allocates nothing.
+    thread_local std::vector<std::size_t> idx_a, idx_b;
+    thread_local std::vector<double> d_a, d_b;
+    idx_a.clear(), idx_b.clear(), d_a.clear(), d_b.clear();
+    if (cells_) cells_->knn(query, k, idx_a, d_a);
+    if (recent_) recent_->knn(query, k, idx_b, d_b);
+    return merge_nearest(cells_.get(), idx_a, d_a, recent_.get(), idx_b, d_b, k, points,
+                         distances_sq_m2);
+}
+
+std::size_t LocalMap::knn_within(const Eigen::Vector3d& query, std::size_t k, double max_distance_m,
+                                 std::vector<Eigen::Vector3d>& points,
+                                 std::vector<double>& distances_sq_m2) const {
+    thread_local std::vector<std::size_t> idx_a, idx_b;
+    thread_local std::vector<double> d_a, d_b;
+    idx_a.clear(), idx_b.clear(), d_a.clear(), d_b.clear();
+    if (cells_) cells_->knn_within(query, k, max_distance_m, idx_a, d_a);
+    if (recent_) recent_->knn_within(query, k, max_distance_m, idx_b, d_b);
+    return merge_nearest(cells_.get(), idx_a, d_a, recent_.get(), idx_b, d_b, k, points,
+                         distances_sq_m2);
 }
 
 std::size_t LocalMap::num_cell_points() const { return cells_ ? cells_->size() : 0; }

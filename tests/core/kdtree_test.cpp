@@ -55,6 +55,39 @@ TEST(KdTree, KnnMatchesBruteForceOnRandomPoints) {
     }
 }
 
+TEST(KdTree, KnnWithinIsKnnCutAtTheBoundAndKeepsAPointExactlyOnIt) {
+    auto points = random_points(2000, 1);
+    points.push_back(Eigen::Vector3d(30.0, 0.0, 0.0));  // exactly 1.5 m from the last query
+    const KdTree tree(points);
+    auto queries = random_points(200, 3);
+    queries.push_back(Eigen::Vector3d(31.5, 0.0, 0.0));
+    constexpr std::size_t kK = 5;
+    std::vector<std::size_t> indices;
+    std::vector<double> d2;
+    std::size_t partial = 0, empty = 0;
+    for (const auto& q : queries) {
+        const NeighborList all = tree.knn(q, kK);
+        std::size_t expected = 0;
+        while (expected < kK && all.distances_sq_m2[expected] <= 1.5 * 1.5) ++expected;
+        ASSERT_EQ(tree.knn_within(q, kK, 1.5, indices, d2), expected);
+        ASSERT_EQ(indices.size(), expected);
+        for (std::size_t j = 0; j < expected; ++j) {
+            EXPECT_EQ(indices[j], all.indices[j]);
+            EXPECT_EQ(d2[j], all.distances_sq_m2[j]);
+        }
+        partial += expected > 0 && expected < kK;
+        empty += expected == 0;
+    }
+    // The bound cut some lists short and emptied others, the far query's included.
+    EXPECT_GT(partial, 10U);
+    EXPECT_GT(empty, 0U);
+    EXPECT_EQ(tree.knn_within(queries.back(), kK, 1.5, indices, d2), 1U);
+    EXPECT_EQ(indices[0], points.size() - 1);
+    EXPECT_THROW(tree.knn_within(queries[0], kK, -1.0, indices, d2), ConfigError);
+    EXPECT_THROW(tree.knn_within(queries[0], kK, std::nan(""), indices, d2), ConfigError);
+    EXPECT_EQ(KdTree({}).knn_within(queries[0], kK, 1.0, indices, d2), 0U);
+}
+
 TEST(KdTree, RadiusMatchesBruteForceAndIsSortedByDistance) {
     const auto points = random_points(2000, 3);
     const KdTree tree(points);

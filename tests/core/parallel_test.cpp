@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <atomic>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace scantling {
@@ -104,6 +105,46 @@ TEST(Parallel, ReduceOrderedHandlesEmptyAndPartialLastChunk) {
     EXPECT_EQ(count(1, 10), 1U);
     EXPECT_EQ(count(1001, 10), 1001U);
     EXPECT_EQ(count(1001, 0), 1001U);
+}
+
+// "0 = all the caller has": inside with_threads({1}) a loop asking for every thread stays on
+// the calling thread (before, each loop built an arena of all hardware threads of its own).
+TEST(Parallel, LoopsInsideWithThreadsShareItsThreadCount) {
+    for (const int threads : {0, 1}) {
+        std::vector<std::thread::id> ids(2000);
+        with_threads(ParallelConfig{1}, [&] {
+            parallel_for(ParallelConfig{threads}, ids.size(), 10,
+                         [&](std::size_t b, std::size_t e) {
+                             for (std::size_t i = b; i < e; ++i)
+                                 ids[i] = std::this_thread::get_id();
+                         });
+        });
+        for (const auto& id : ids) ASSERT_EQ(id, std::this_thread::get_id()) << threads;
+    }
+    // Nested in a 2-thread run, loops of 2 (or 0) threads still cover every index once.
+    std::vector<std::atomic<int>> counts(5000);
+    with_threads(ParallelConfig{2}, [&] {
+        parallel_for(ParallelConfig{2}, 4, 1, [&](std::size_t b, std::size_t e) {
+            for (std::size_t part = b; part < e; ++part) {
+                parallel_for(ParallelConfig{part % 2 == 0 ? 2 : 0}, 1250, 16,
+                             [&](std::size_t ib, std::size_t ie) {
+                                 for (std::size_t i = ib; i < ie; ++i) {
+                                     counts[part * 1250 + i].fetch_add(1);
+                                 }
+                             });
+            }
+        });
+    });
+    for (const auto& c : counts) ASSERT_EQ(c.load(), 1);
+}
+
+TEST(Parallel, WithThreadsRunsOnceAndPassesExceptionsOn) {
+    int runs = 0;
+    with_threads(ParallelConfig{2}, [&] { ++runs; });
+    with_threads(ParallelConfig{3}, [&] { ++runs; });  // not the machine's count: an arena
+    EXPECT_EQ(runs, 2);
+    EXPECT_THROW(with_threads(ParallelConfig{2}, [] { throw InputError("inside"); }), InputError);
+    EXPECT_THROW(with_threads(ParallelConfig{-1}, [] {}), ConfigError);
 }
 
 TEST(Parallel, NegativeThreadCountIsAConfigError) {

@@ -152,6 +152,37 @@ TEST(ExtractEdges, FindsTheVerticalCornersOfABoxRoomAndNothingOnItsWalls) {
     }
 }
 
+TEST(ExtractEdges, PlanarPointsLieOnTheRoomsFacesAwayFromItsEdgesWithinTheSectorCap) {
+    const std::vector<double> elevations = uniform_elevations(32, -20.0, 20.0);
+    const PointCloud sweep = spinning_sweep(kSensor, elevations, 1024, cast_room, 0.001);
+    EdgeExtractionConfig config = room_config();
+    EXPECT_TRUE(extract_edges(sweep, config).plane_points.empty());  // off by default
+    config.max_planes_per_sector = 4;
+    const EdgeFeatures features = extract_edges(sweep, config);
+    const EdgeFeatures edges_only = extract_edges(sweep, room_config());
+    EXPECT_EQ(features.points, edges_only.points);  // the edges do not change
+    ASSERT_EQ(features.plane_ranges_m.size(), features.plane_points.size());
+    EXPECT_LE(features.plane_points.size(), 32U * 6U * 4U);
+    EXPECT_GT(features.plane_points.size(), 32U * 6U * 3U);  // flat room: nearly every sector
+    for (std::size_t i = 0; i < features.plane_points.size(); ++i) {
+        // Away from the vertical corners that the rings cross (a ring running along the wall
+        // just above the floor is flat along the ring: a planar point, rightly).
+        const Eigen::Vector3d p = features.plane_points[i] + kSensor;
+        double to_corner_m = kInf;
+        for (double cx : {kRoomMin.x(), kRoomMax.x()}) {
+            for (double cy : {kRoomMin.y(), kRoomMax.y()}) {
+                to_corner_m = std::min(to_corner_m, (p.head<2>() - Eigen::Vector2d(cx, cy)).norm());
+            }
+        }
+        EXPECT_GT(to_corner_m, 0.1) << p.transpose();
+        EXPECT_DOUBLE_EQ(features.plane_ranges_m[i], features.plane_points[i].norm());
+    }
+    config.max_plane_curvature = 0.0;  // nothing is that flat with 1 mm noise
+    EXPECT_TRUE(extract_edges(sweep, config).plane_points.empty());
+    config.max_planes_per_sector = -1;
+    EXPECT_THROW(extract_edges(sweep, config), ConfigError);
+}
+
 /// Ring and position of every output point in the sweep (points are copied, so exact).
 std::vector<std::size_t> indices_in(const PointCloud& sweep, const EdgeFeatures& edges) {
     std::map<std::tuple<double, double, double>, std::size_t> index;

@@ -91,6 +91,52 @@ TEST(EdgeRegistration, ParallelLinesLeaveTheirDirectionAtThePrediction) {
     EXPECT_NEAR(r.T_world_sensor.translation().z(), 0.3, 1e-4);
 }
 
+/// A floor at z = −1.7 m sampled every 0.2 m over 30 m × 30 m, tilted by 2° about x.
+std::vector<Eigen::Vector3d> tilted_floor() {
+    std::vector<Eigen::Vector3d> pts;
+    const Eigen::Matrix3d tilt = rotation_from_euler_zyx(0.0, 0.0, 0.035);
+    for (double x = -15.0; x <= 15.0; x += 0.2) {
+        for (double y = -15.0; y <= 15.0; y += 0.2)
+            pts.push_back(tilt * Eigen::Vector3d(x, y, -1.7));
+    }
+    return pts;
+}
+
+TEST(EdgeRegistration, PlanarPointsObserveWhatVerticalLinesCannot) {
+    // Vertical lines leave z (and, on a small scene, roll and pitch) to the prediction; a floor
+    // of planar points observes them.
+    const auto lines = lines_cloud({{0, 0, 1}}, 40, 8);
+    const auto floor = tilted_floor();
+    const LocalMap line_map = map_of(lines);
+    const LocalMap floor_map = map_of(floor);
+    const Eigen::Isometry3d T_true =
+        make_isometry(rotation_from_euler_zyx(0.3, 0.01, -0.01), Eigen::Vector3d(0.5, 0.2, 0.1));
+    const Eigen::Isometry3d T_init =
+        se3_exp((Vector6d() << 0.05, -0.05, 0.08, 0.005, -0.005, 0.01).finished()) * T_true;
+    EdgeFeatures features = edges_from(lines, T_true, 3);
+    const EdgeFeatures floor_points = edges_from(floor, T_true, 7);
+    features.plane_points = floor_points.points;
+    features.plane_ranges_m = floor_points.ranges_m;
+    EdgeRegistrationConfig config;
+    config.remap_degenerate = true;
+    const auto edges_only = register_edges(features, line_map, T_init, 0.5, 40.0, config);
+    ASSERT_TRUE(edges_only.registered);
+    EXPECT_GT(edges_only.num_degenerate, 0);
+    EXPECT_GT(std::abs((edges_only.T_world_sensor.inverse() * T_true).translation().z()), 0.05);
+
+    for (const double refit_m : {0.0, 0.01}) {
+        config.refit_distance_m = refit_m;
+        const auto both = register_edges(features, line_map, T_init, 0.5, 40.0, config, &floor_map);
+        ASSERT_TRUE(both.registered);
+        EXPECT_TRUE(both.converged);
+        EXPECT_EQ(both.num_degenerate, 0) << refit_m;
+        EXPECT_GT(both.num_correspondences, features.points.size() + floor_points.size() / 2);
+        const PoseError err = pose_error(both.T_world_sensor, T_true);
+        EXPECT_LT(err.translation_m, 1e-3) << refit_m;
+        EXPECT_LT(err.rotation_rad, 1e-4) << refit_m;
+    }
+}
+
 TEST(EdgeRegistration, TooFewCorrespondencesReturnThePriorUnregistered) {
     const auto world = lines_cloud({{0, 0, 1}, {1, 0, 0}}, 5, 9);
     const LocalMap local = map_of(world);

@@ -33,6 +33,29 @@ TEST(LiodomConfigFile, PresetPlusOverrides) {
     EXPECT_DOUBLE_EQ(c.map.cell_size_xy_m, liodom_preset("confined").map.cell_size_xy_m);
 }
 
+TEST(LiodomConfigFile, PlanarPointsAndRefitAreKeysAndOneThreadCountSetsAllThree) {
+    const auto p = write_temp("e.yaml",
+                              "preset: confined\nfeatures:\n  max_planes_per_sector: 3\n"
+                              "registration:\n  refit_distance_m: 0.02\n  plane_eigen_ratio: 4\n");
+    LiodomConfig c = load_liodom_config(p.string());
+    EXPECT_EQ(c.features.max_planes_per_sector, 3);
+    EXPECT_DOUBLE_EQ(c.registration.refit_distance_m, 0.02);
+    EXPECT_DOUBLE_EQ(c.registration.plane_eigen_ratio, 4.0);
+    // The library default is LiODOM's edges-only method; the kitti preset adds planar points.
+    EXPECT_EQ(LiodomConfig{}.features.max_planes_per_sector, 0);
+    EXPECT_DOUBLE_EQ(LiodomConfig{}.registration.refit_distance_m, 0.0);
+    EXPECT_GT(liodom_preset("kitti").features.max_planes_per_sector, 0);
+    c.set_num_threads(1);
+    EXPECT_EQ(c.parallel.num_threads, 1);
+    EXPECT_EQ(c.features.parallel.num_threads, 1);
+    EXPECT_EQ(c.registration.parallel.num_threads, 1);
+    const auto bad = write_temp("f.yaml", "registration:\n  refit_distance_m: -1\n");
+    EXPECT_THROW(load_liodom_config(bad.string()), Error);
+    const auto flat = write_temp("g.yaml", "registration:\n  plane_eigen_ratio: 0.5\n");
+    EXPECT_THROW(load_liodom_config(flat.string()), Error);
+    fs::remove_all(p.parent_path());
+}
+
 TEST(LiodomConfigFile, ErrorsNameFileLineAndKey) {
     const auto unknown = write_temp("b.yaml", "features:\n  max_rnge_m: 3\n");
     try {

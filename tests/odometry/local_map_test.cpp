@@ -50,6 +50,33 @@ TEST(LocalMap, KnnMergesCellsAndRecentSweepsLikeBruteForce) {
     }
 }
 
+TEST(LocalMap, KnnWithinEqualsKnnInsideTheBound) {
+    mapping::CellMap map;
+    map.insert(random_points(3000, 20.0, 1));
+    LocalMapConfig config;
+    config.radius_m = 100.0;
+    LocalMap local(config);
+    local.update(map, Eigen::Vector3d::Zero(), random_points(500, 20.0, 2));
+    Rng rng(4);
+    std::vector<Eigen::Vector3d> found, bounded;
+    std::vector<double> d2, bounded_d2;
+    std::size_t cut = 0;
+    for (int q = 0; q < 200; ++q) {
+        const Eigen::Vector3d query(rng.uniform(-25, 25), rng.uniform(-25, 25), rng.uniform(-4, 4));
+        local.knn(query, 5, found, d2);
+        const std::size_t n = local.knn_within(query, 5, 1.0, bounded, bounded_d2);
+        const auto inside = static_cast<std::size_t>(
+            std::count_if(d2.begin(), d2.end(), [](double d) { return d <= 1.0; }));
+        ASSERT_EQ(n, inside);
+        for (std::size_t i = 0; i < n; ++i) {
+            EXPECT_EQ(bounded[i], found[i]);
+            EXPECT_EQ(bounded_d2[i], d2[i]);
+        }
+        cut += n < 5;
+    }
+    EXPECT_GT(cut, 20U);  // the bound mattered for a good share of the queries
+}
+
 TEST(LocalMap, KeepsOnlyTheLastSweepsAndRebuildsCellsAfterMoving) {
     mapping::CellMap map;
     LocalMapConfig config;

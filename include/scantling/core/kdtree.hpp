@@ -92,6 +92,14 @@ class KdTree {
                     std::vector<double>& distances_sq_m2) const;
     NeighborList knn(const Eigen::Vector3d& query, std::size_t k) const;
 
+    /// knn() restricted to points at most `max_distance_m` away: the min(k, size()) nearest
+    /// of those, nearest first (fewer when fewer are that close). The bound prunes the search,
+    /// so a query whose neighbours are far away costs little; for the points it returns the
+    /// answer equals knn()'s. Throws ConfigError on a negative or non-finite distance.
+    std::size_t knn_within(const Eigen::Vector3d& query, std::size_t k, double max_distance_m,
+                           std::vector<std::size_t>& indices,
+                           std::vector<double>& distances_sq_m2) const;
+
     /// Every point strictly closer than `radius_m` (>= 0), nearest first, ties by index.
     /// Returns the count. Throws ConfigError on a negative or non-finite radius.
     std::size_t radius(const Eigen::Vector3d& query, double radius_m,

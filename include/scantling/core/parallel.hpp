@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// Thread configuration applied through a local TBB arena (no process-global thread state).
+/// Thread configuration applied through TBB task arenas (no process-global thread state).
 /// TBB stays out of public headers: bodies are passed as std::function over index ranges, so
 /// the call overhead is per chunk, not per element.
 
@@ -12,15 +12,26 @@
 namespace scantling {
 
 struct ParallelConfig {
-    int num_threads = 0;  ///< worker threads; 0 = all hardware threads, 1 = run serially
+    /// Worker threads; 1 = run serially; 0 = all the caller has: every hardware thread, or
+    /// the count of an enclosing with_threads().
+    int num_threads = 0;
 
     /// Throws ConfigError("<prefix>.num_threads = -1, expected >= 0").
     void validate(std::string_view prefix = "parallel") const;
 };
 
+/// Runs `fn` with `config.num_threads` threads: in the caller's task arena when it has that
+/// many (or for 0), otherwise in a new arena of that size for the whole call. Every
+/// parallel_for inside `fn` asking for the same count then shares that one arena instead of
+/// building its own (the odometry's pipeline, a CLI command's whole run).
+void with_threads(const ParallelConfig& config, const std::function<void()>& fn);
+
 /// Calls `body(begin, end)` over disjoint sub-ranges covering [0, n), at most `grain`
-/// indices each when run in parallel, inside a task arena of `config.num_threads` threads.
-/// `body` must only write to per-index state: the split depends on scheduling.
+/// indices each when run in parallel. Runs in the caller's task arena when it has
+/// `config.num_threads` threads (or for 0 = all threads the caller has), otherwise in an arena
+/// of that size built for this call; isolated, so that while the caller waits for its chunks
+/// it runs nothing else. `body` must only write to per-index state: the split depends on
+/// scheduling.
 void parallel_for(const ParallelConfig& config, std::size_t n, std::size_t grain,
                   const std::function<void(std::size_t begin, std::size_t end)>& body);
 

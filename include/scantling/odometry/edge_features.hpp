@@ -89,6 +89,13 @@ struct EdgeExtractionConfig {
     /// a receding surface is "parallel to the beam", radians, in (0, π/2). 80°: LOAM's test
     /// (neighbour distance > 1.4 % of the range) at an HDL-64E's azimuth step.
     double max_incidence_rad = 1.3962634015954636;
+    /// Planar points per sector beside the edges (LOAM's "flat" points: the lowest curvature,
+    /// registered point-to-plane), >= 0; 0 = edges only (LiODOM). Edges along rings are mostly
+    /// vertical structure, which leaves height, roll and pitch weakly observed; planar points
+    /// (the ground, walls) constrain exactly those.
+    int max_planes_per_sector = 0;
+    /// Largest curvature c of a planar point, >= 0 (flat surfaces of an HDL-64E: median 1.5e-6).
+    double max_plane_curvature = 5e-6;
     RingOrganizerConfig rings{};
     ParallelConfig parallel{};  ///< threads over rings (ring organisation and extraction)
 
@@ -102,9 +109,12 @@ struct EdgeFeatures {
     std::vector<double> ranges_m;         ///< |p| in the sensor frame (for the weight ω)
     std::vector<double> times_s;          ///< per-point time when the sweep has it, else empty
     std::vector<float> curvatures;        ///< c of each edge (dimensionless)
-    std::size_t num_input = 0;            ///< points in the sweep
-    std::size_t num_in_range = 0;         ///< finite points in a ring and in [r_min, r_max]
-    std::size_t num_rings = 0;            ///< rings found (rings.hpp)
+    /// Planar points (sensor frame) and their ranges, when max_planes_per_sector > 0.
+    std::vector<Eigen::Vector3d> plane_points;
+    std::vector<double> plane_ranges_m;
+    std::size_t num_input = 0;     ///< points in the sweep
+    std::size_t num_in_range = 0;  ///< finite points in a ring and in [r_min, r_max]
+    std::size_t num_rings = 0;     ///< rings found (rings.hpp)
 
     std::size_t size() const { return points.size(); }
     bool empty() const { return points.empty(); }

@@ -36,10 +36,18 @@ struct EdgeRegistrationConfig {
     int num_neighbors = 5;                 ///< k of the line fit (LOAM: 5)
     double max_neighbor_distance_m = 1.0;  ///< farthest of the k neighbours, metres
     double line_eigen_ratio = 3.0;         ///< λ1 ≥ ratio · λ2 makes a line (A-LOAM: 3)
-    double huber_delta_m = 0.1;            ///< Huber threshold on ω·d_e, metres
-    int max_iterations = 12;               ///< outer iterations (correspondences re-found)
-    int inner_iterations = 2;              ///< Gauss-Newton steps per set of correspondences
-    int min_correspondences = 30;          ///< fewer: the sweep is not registered
+    /// Planar points: the k neighbours make a plane when the middle eigenvalue of their
+    /// covariance is at least this times the smallest (> 1).
+    double plane_eigen_ratio = 10.0;
+    double huber_delta_m = 0.1;  ///< Huber threshold on ω·d_e, metres
+    int max_iterations = 12;     ///< outer iterations (correspondences re-found)
+    int inner_iterations = 2;    ///< Gauss-Newton steps per set of correspondences
+    /// After the first outer iteration an edge's line is fitted again only when the edge has
+    /// moved more than this since its last fit, metres (0 = refit every edge every outer
+    /// iteration, LOAM's way). Past the first iteration edges move millimetres, their five
+    /// neighbours rarely change, and the k-NN search is most of a sweep's time.
+    double refit_distance_m = 0.0;
+    int min_correspondences = 30;  ///< fewer: the sweep is not registered
     double convergence_translation_m = 1e-4;
     double convergence_rotation_rad = 1e-5;
     /// Directions of the information matrix with eigenvalue < ratio × the largest are
@@ -86,15 +94,30 @@ EdgeLine fit_edge_line(const LocalMap& map, const Eigen::Vector3d& query,
                        const EdgeRegistrationConfig& config, std::vector<Eigen::Vector3d>& points,
                        std::vector<double>& distances);
 
+/// A plane of the local map: its neighbours' centroid and unit normal.
+struct SurfacePatch {
+    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+    Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
+    bool valid = false;  ///< false: too few or too far neighbours, or not plane-like
+};
+
+/// The `num_neighbors` nearest points of `query` in `map` as a plane: all within
+/// `max_neighbor_distance_m` and with λ2 ≥ `plane_eigen_ratio` · λ3 (middle against smallest).
+SurfacePatch fit_surface_patch(const LocalMap& map, const Eigen::Vector3d& query,
+                               const EdgeRegistrationConfig& config,
+                               std::vector<Eigen::Vector3d>& points,
+                               std::vector<double>& distances);
+
 /// ω = 1 − (r − r_min)/(r_max − r_min), clamped to [0, 1] (1 when `enabled` is false).
 double edge_range_weight(double range_m, double min_range_m, double max_range_m, bool enabled);
 
 /// Registers `edges` (sensor frame, with ranges) to `map` from `T_init` (world ← sensor).
 /// Never throws on data: too few correspondences give registered = false and T_init back.
 /// `min_range_m`/`max_range_m` are the range gate the edges were extracted with (for ω).
+/// With `plane_map`, the planar points of `edges` add point-to-plane residuals against it.
 EdgeRegistrationResult register_edges(const EdgeFeatures& edges, const LocalMap& map,
                                       const Eigen::Isometry3d& T_init, double min_range_m,
-                                      double max_range_m,
-                                      const EdgeRegistrationConfig& config = {});
+                                      double max_range_m, const EdgeRegistrationConfig& config = {},
+                                      const LocalMap* plane_map = nullptr);
 
 }  // namespace scantling::odometry

@@ -45,10 +45,21 @@ struct LiodomConfig {
     /// (a recording cut mid-drive, a pair of scans 0.5 m apart) begins from a wrong guess that
     /// sparse edges cannot always recover from.
     double bootstrap_voxel_m = 0.2;
+    /// Sweeps whose planar points join the planes' local map besides its cells (the edges'
+    /// count is local_map.num_recent_sweeps), >= 0. Planar points are dense: each recent sweep
+    /// makes the per-sweep rebuild of that k-d tree larger.
+    int plane_recent_sweeps = 1;
     /// Threads of the whole run: 1 runs the stages one after the other on the calling thread;
     /// 2 or more pipelines extraction against registration (0 = all hardware threads).
     ParallelConfig parallel{};
     void validate(std::string_view prefix = "odometry") const;
+    /// One thread count for the run, the extraction and the registration (what `--threads`
+    /// means): 1 makes the whole odometry serial.
+    void set_num_threads(int threads) {
+        parallel.num_threads = threads;
+        features.parallel.num_threads = threads;
+        registration.parallel.num_threads = threads;
+    }
 };
 
 enum class FrameStatus {
@@ -117,6 +128,7 @@ class LidarOdometry {
     const LiodomConfig& config() const { return config_; }
     const mapping::CellMap& map() const { return map_; }
     const LocalMap& local_map() const { return local_map_; }
+    const LocalMap& plane_local_map() const { return plane_local_map_; }
     std::size_t num_frames() const { return num_frames_; }
     /// Map, local map and motion-model state, bytes (estimate).
     std::size_t memory_bytes() const;
@@ -129,6 +141,9 @@ class LidarOdometry {
     LiodomConfig config_;
     mapping::CellMap map_;
     LocalMap local_map_;
+    /// The planar points' map (empty unless features.max_planes_per_sector > 0).
+    mapping::CellMap plane_map_;
+    LocalMap plane_local_map_;
     Eigen::Isometry3d T_initial_;
     Eigen::Isometry3d T_last_ = Eigen::Isometry3d::Identity();
     /// Velocity as the twist per second of T_prev⁻¹ T_last (body frame).

@@ -47,6 +47,12 @@ class LocalMap {
     std::size_t knn(const Eigen::Vector3d& query, std::size_t k,
                     std::vector<Eigen::Vector3d>& points,
                     std::vector<double>& distances_sq_m2) const;
+    /// knn() over the points at most `max_distance_m` away only (fewer than k when fewer are
+    /// that close): the same answer as knn() wherever its k-th neighbour is within the bound,
+    /// and much cheaper for a query far from the map (KdTree::knn_within).
+    std::size_t knn_within(const Eigen::Vector3d& query, std::size_t k, double max_distance_m,
+                           std::vector<Eigen::Vector3d>& points,
+                           std::vector<double>& distances_sq_m2) const;
 
     std::size_t size() const;
     bool empty() const { return size() == 0; }

@@ -1,9 +1,9 @@
 #include "embree_scene.hpp"
 
 #include <scantling/core/error.hpp>
+#include <scantling/core/parallel.hpp>
 
 #include <fmt/format.h>
-#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <cmath>
@@ -130,11 +130,9 @@ void EmbreeScene::build(const TriangleMesh& mesh, const RayCasterConfig& config)
                                         : RTC_BUILD_QUALITY_MEDIUM;
     rtcSetSceneBuildQuality(embree_.scene, quality);
     if (!mesh.empty()) attach_triangles(mesh, quality);
-    // Embree's TBB builder runs in the caller's arena: this bounds_ its thread count
+    // Embree's TBB builder runs in the caller's arena: with_threads bounds its thread count
     // without touching process-global TBB state.
-    const int threads = config.build_parallel.num_threads;
-    tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
-    arena.execute([&] { rtcCommitScene(embree_.scene); });
+    with_threads(config.build_parallel, [&] { rtcCommitScene(embree_.scene); });
     check("rtcCommitScene");
 }
 
