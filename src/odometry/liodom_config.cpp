@@ -89,7 +89,7 @@ ConfigSchema<EdgeRegistrationConfig> registration_schema() {
         .field("inner_iterations", &C::inner_iterations, "Gauss-Newton steps per outer iteration",
                kPositive)
         .field("refit_distance_m", &C::refit_distance_m,
-               "refit an edge's line once it moved this far since its last fit (0 = always), m",
+               "refit a point's line or plane once it moved this far since its fit (0 = always), m",
                kNonNegative)
         .field("min_correspondences", &C::min_correspondences,
                "fewer: the sweep is carried by the motion model", kPositive)

@@ -42,10 +42,11 @@ struct EdgeRegistrationConfig {
     double huber_delta_m = 0.1;  ///< Huber threshold on ω·d_e, metres
     int max_iterations = 12;     ///< outer iterations (correspondences re-found)
     int inner_iterations = 2;    ///< Gauss-Newton steps per set of correspondences
-    /// After the first outer iteration an edge's line is fitted again only when the edge has
-    /// moved more than this since its last fit, metres (0 = refit every edge every outer
-    /// iteration, LOAM's way). Past the first iteration edges move millimetres, their five
-    /// neighbours rarely change, and the k-NN search is most of a sweep's time.
+    /// After the first outer iteration an edge's line (a planar point's plane) is fitted again
+    /// only when the point has moved more than this since its last fit, metres (0 = refit
+    /// every point every outer iteration, LOAM's way). Past the first iteration points move
+    /// millimetres, their five neighbours rarely change, and the k-NN search is most of a
+    /// sweep's time.
     double refit_distance_m = 0.0;
     int min_correspondences = 30;  ///< fewer: the sweep is not registered
     double convergence_translation_m = 1e-4;
