@@ -193,7 +193,8 @@ EdgeRegistrationResult register_edges(const EdgeFeatures& edges, const LocalMap&
     const std::size_t m = plane_map && !plane_map->empty() ? edges.plane_points.size() : 0;
     std::vector<double> plane_weights(m);
     for (std::size_t i = 0; i < m; ++i) {
-        const double r = edges.plane_ranges_m[i];
+        const double r = i < edges.plane_ranges_m.size() ? edges.plane_ranges_m[i]
+                                                         : edges.plane_points[i].norm();
         plane_weights[i] = edge_range_weight(r, min_range_m, max_range_m, config.range_weighting);
     }
 
