@@ -212,83 +212,83 @@ struct RingEdges {
     std::size_t num_in_range = 0;
 };
 
-/// Per sector, the lowest-curvature reliable points (at most max_planes_per_sector), each
-/// suppressing its neighbours within the curvature window, so that they spread along the ring.
-std::vector<int> select_planes(const RingPoints& rp, const std::vector<float>& c,
-                               const EdgeExtractionConfig& config) {
+/// LOAM's reliability test of a ring point: not occluded, not on a surface along the beam.
+class Reliability {
+  public:
+    Reliability(const RingPoints& rp, const EdgeExtractionConfig& config)
+        : rp_(rp),
+          check_(config.reject_unreliable),
+          occluded_(check_ ? occluded_points(rp, config.curvature_half_window)
+                           : std::vector<char>()),
+          tan_max_incidence_(std::tan(config.max_incidence_rad)) {}
+
+    /// Only for points with a full curvature window (k >= 1).
+    bool operator()(int k) const {
+        return !check_ || (!occluded_[k] && !parallel_to_beam(rp_, k, tan_max_incidence_));
+    }
+
+  private:
+    const RingPoints& rp_;
+    bool check_;
+    std::vector<char> occluded_;
+    double tan_max_incidence_;
+};
+
+/// Per sector of the ring, up to `cap` of the `eligible` points, best first by `better` (a
+/// strict total order), each pick suppressing the points within `h` of it: within its segment
+/// when `within_segment`, else across segment ends. Returns positions in the ring, ascending.
+template <typename Eligible, typename Better>
+std::vector<int> pick_per_sector(const RingPoints& rp, int num_sectors, int cap, int h,
+                                 bool within_segment, Eligible&& eligible, Better&& better) {
     const int n = rp.size();
-    const int h = config.curvature_half_window;
-    const bool check = config.reject_unreliable;
-    const std::vector<char> occluded = check ? occluded_points(rp, h) : std::vector<char>();
-    const double tan_max_incidence = std::tan(config.max_incidence_rad);
-    auto eligible = [&](int k) {
-        if (!(c[k] <= config.max_plane_curvature)) return false;  // also NaN: no full window
-        return !check || (!occluded[k] && !parallel_to_beam(rp, k, tan_max_incidence));
-    };
     std::vector<char> suppressed(static_cast<std::size_t>(n), 0);
     std::vector<int> picked, candidates;
-    for (int s = 0; s < config.num_sectors; ++s) {
-        const int begin = static_cast<int>(static_cast<long long>(n) * s / config.num_sectors);
-        const int end = static_cast<int>(static_cast<long long>(n) * (s + 1) / config.num_sectors);
+    // A heap ordered so that its top is the best: only the first few are usually needed.
+    auto worse = [&](int a, int b) { return better(b, a); };
+    for (int s = 0; s < num_sectors; ++s) {
+        const int begin = static_cast<int>(static_cast<long long>(n) * s / num_sectors);
+        const int end = static_cast<int>(static_cast<long long>(n) * (s + 1) / num_sectors);
         candidates.clear();
         for (int k = begin; k < end; ++k) {
             if (eligible(k)) candidates.push_back(k);
         }
-        auto flatter = [&](int a, int b) { return c[a] < c[b] || (c[a] == c[b] && a < b); };
-        std::sort(candidates.begin(), candidates.end(), flatter);
+        std::make_heap(candidates.begin(), candidates.end(), worse);
         int count = 0;
-        for (int k : candidates) {
-            if (count >= config.max_planes_per_sector) break;
+        for (auto top = candidates.end(); top != candidates.begin() && count < cap;) {
+            std::pop_heap(candidates.begin(), top, worse);
+            const int k = *--top;
             if (suppressed[k]) continue;
             picked.push_back(k);
             ++count;
-            for (int j = std::max(0, k - h); j <= std::min(n - 1, k + h); ++j) suppressed[j] = 1;
+            const int first =
+                within_segment ? std::max(rp.seg_first[k], k - h) : std::max(0, k - h);
+            const int last =
+                within_segment ? std::min(rp.seg_last[k], k + h) : std::min(n - 1, k + h);
+            for (int j = first; j <= last; ++j) suppressed[j] = 1;
         }
     }
     std::sort(picked.begin(), picked.end());
     return picked;
 }
 
-/// Per sector, the highest-curvature reliable candidates, suppressing the neighbours of each
-/// pick within its segment. Returns positions in the ring, ascending.
+/// Per sector, the highest-curvature reliable candidates (ties: lower position first),
+/// suppressing the neighbours of each pick within its segment.
 std::vector<int> select_edges(const RingPoints& rp, const std::vector<float>& c,
-                              const EdgeExtractionConfig& config) {
-    const int n = rp.size();
-    const int h = config.curvature_half_window;
-    const bool check = config.reject_unreliable;
-    const std::vector<char> occluded = check ? occluded_points(rp, h) : std::vector<char>();
-    const double tan_max_incidence = std::tan(config.max_incidence_rad);
-    auto eligible = [&](int k) {
-        if (!(c[k] > config.min_edge_curvature)) return false;  // also NaN: no full window
-        return !check || (!occluded[k] && !parallel_to_beam(rp, k, tan_max_incidence));
-    };
-    std::vector<char> suppressed(static_cast<std::size_t>(n), 0);
-    std::vector<int> picked;
-    std::vector<int> candidates;
-    for (int s = 0; s < config.num_sectors; ++s) {
-        const int begin = static_cast<int>(static_cast<long long>(n) * s / config.num_sectors);
-        const int end = static_cast<int>(static_cast<long long>(n) * (s + 1) / config.num_sectors);
-        candidates.clear();
-        for (int k = begin; k < end; ++k) {
-            if (eligible(k)) candidates.push_back(k);
-        }
-        // A heap, not a sort: only the first few candidates are usually needed.
-        auto lower = [&](int a, int b) { return c[a] < c[b] || (c[a] == c[b] && a > b); };
-        std::make_heap(candidates.begin(), candidates.end(), lower);
-        int count = 0;
-        for (auto top = candidates.end();
-             top != candidates.begin() && count < config.max_edges_per_sector;) {
-            std::pop_heap(candidates.begin(), top, lower);
-            const int k = *--top;
-            if (suppressed[k]) continue;
-            picked.push_back(k);
-            ++count;
-            for (int j = k; j <= std::min(rp.seg_last[k], k + h); ++j) suppressed[j] = 1;
-            for (int j = k; j >= std::max(rp.seg_first[k], k - h); --j) suppressed[j] = 1;
-        }
-    }
-    std::sort(picked.begin(), picked.end());
-    return picked;
+                              const Reliability& reliable, const EdgeExtractionConfig& config) {
+    return pick_per_sector(
+        rp, config.num_sectors, config.max_edges_per_sector, config.curvature_half_window, true,
+        [&](int k) { return c[k] > config.min_edge_curvature && reliable(k); },  // NaN: no window
+        [&](int a, int b) { return c[a] > c[b] || (c[a] == c[b] && a < b); });
+}
+
+/// Per sector, the lowest-curvature reliable points (ties: lower position first), each
+/// suppressing its neighbours within the curvature window, so that they spread along the ring.
+std::vector<int> select_planes(const RingPoints& rp, const std::vector<float>& c,
+                               const Reliability& reliable, const EdgeExtractionConfig& config) {
+    return pick_per_sector(
+        rp, config.num_sectors, config.max_planes_per_sector, config.curvature_half_window, false,
+        [&](int k) { return c[k] <= config.max_plane_curvature && reliable(k); },  // NaN: no window
+        [&](int a, int b) { return c[a] < c[b] || (c[a] == c[b] && a < b); });
 }
 
 RingEdges extract_ring(const PointCloud& sweep, const Indices& ring, const std::vector<float>& az,
@@ -299,12 +299,13 @@ RingEdges extract_ring(const PointCloud& sweep, const Indices& ring, const std::
     std::vector<float> c(rp.index.size());
     for (int k = 0; k < rp.size(); ++k)
         c[k] = curvature(sweep, rp, k, config.curvature_half_window);
-    for (int k : select_edges(rp, c, config)) {
+    const Reliability reliable(rp, config);
+    for (int k : select_edges(rp, c, reliable, config)) {
         edges.index.push_back(rp.index[k]);
         edges.curvature.push_back(c[k]);
     }
     if (config.max_planes_per_sector > 0) {
-        for (int k : select_planes(rp, c, config)) {
+        for (int k : select_planes(rp, c, reliable, config)) {
             edges.plane_index.push_back(rp.index[k]);
         }
     }

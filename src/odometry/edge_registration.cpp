@@ -86,26 +86,41 @@ NormalEquations linearize_all(const EdgeFeatures& edges, const std::vector<EdgeL
 
 }  // namespace
 
-SurfacePatch fit_surface_patch(const LocalMap& map, const Eigen::Vector3d& query,
-                               const EdgeRegistrationConfig& config,
-                               std::vector<Eigen::Vector3d>& points,
-                               std::vector<double>& distances) {
-    SurfacePatch patch;
+namespace {
+
+/// The `num_neighbors` nearest map points of `query`, all within `max_neighbor_distance_m`:
+/// their centroid and the eigen-decomposition of their covariance (eigenvalues ascending).
+/// False when fewer are that close.
+bool neighbour_shape(const LocalMap& map, const Eigen::Vector3d& query,
+                     const EdgeRegistrationConfig& config, std::vector<Eigen::Vector3d>& points,
+                     std::vector<double>& distances, Eigen::Vector3d& mean,
+                     Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>& eig) {
     const auto k = static_cast<std::size_t>(config.num_neighbors);
+    // Neighbours beyond the limit would reject the fit anyway: the bounded search skips them.
     if (map.knn_within(query, k, config.max_neighbor_distance_m, points, distances) < k) {
-        return patch;
+        return false;
     }
-    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+    mean.setZero();
     for (const auto& p : points) mean += p;
     mean /= static_cast<double>(k);
     Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
     for (const auto& p : points) cov += (p - mean) * (p - mean).transpose();
     cov /= static_cast<double>(k);
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
     eig.computeDirect(cov);
-    const Eigen::Vector3d& lambda = eig.eigenvalues();  // ascending
+    return true;
+}
+
+}  // namespace
+
+SurfacePatch fit_surface_patch(const LocalMap& map, const Eigen::Vector3d& query,
+                               const EdgeRegistrationConfig& config,
+                               std::vector<Eigen::Vector3d>& points,
+                               std::vector<double>& distances) {
+    SurfacePatch patch;
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+    if (!neighbour_shape(map, query, config, points, distances, patch.centroid, eig)) return patch;
+    const Eigen::Vector3d& lambda = eig.eigenvalues();
     if (!(lambda(1) > 0.0) || lambda(1) < config.plane_eigen_ratio * lambda(0)) return patch;
-    patch.centroid = mean;
     patch.normal = eig.eigenvectors().col(0).normalized();
     patch.valid = true;
     return patch;
@@ -115,22 +130,10 @@ EdgeLine fit_edge_line(const LocalMap& map, const Eigen::Vector3d& query,
                        const EdgeRegistrationConfig& config, std::vector<Eigen::Vector3d>& points,
                        std::vector<double>& distances) {
     EdgeLine line;
-    const auto k = static_cast<std::size_t>(config.num_neighbors);
-    // Neighbours beyond the limit would reject the line anyway: the bounded search skips them.
-    if (map.knn_within(query, k, config.max_neighbor_distance_m, points, distances) < k) {
-        return line;
-    }
-    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-    for (const auto& p : points) mean += p;
-    mean /= static_cast<double>(k);
-    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-    for (const auto& p : points) cov += (p - mean) * (p - mean).transpose();
-    cov /= static_cast<double>(k);
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
-    eig.computeDirect(cov);
-    const Eigen::Vector3d& lambda = eig.eigenvalues();  // ascending
+    if (!neighbour_shape(map, query, config, points, distances, line.centroid, eig)) return line;
+    const Eigen::Vector3d& lambda = eig.eigenvalues();
     if (!(lambda(2) > 0.0) || lambda(2) < config.line_eigen_ratio * lambda(1)) return line;
-    line.centroid = mean;
     line.direction = eig.eigenvectors().col(2).normalized();
     line.valid = true;
     return line;
