@@ -53,6 +53,10 @@ TEST(LiodomConfigFile, PlanarPointsAndRefitAreKeysAndOneThreadCountSetsAllThree)
     EXPECT_THROW(load_liodom_config(bad.string()), Error);
     const auto flat = write_temp("g.yaml", "registration:\n  plane_eigen_ratio: 0.5\n");
     EXPECT_THROW(load_liodom_config(flat.string()), Error);
+    const auto recent = write_temp("h.yaml", "plane_recent_sweeps: 2\n");
+    EXPECT_EQ(load_liodom_config(recent.string()).plane_recent_sweeps, 2);
+    c.plane_recent_sweeps = -1;
+    EXPECT_THROW(c.validate(), ConfigError);
     fs::remove_all(p.parent_path());
 }
 
