@@ -23,6 +23,8 @@ build: configure
 
 SCENARIO ?= scenarios/hull_sweep_os1.yaml
 RECORDING ?= $(BUILD_DIR)/recordings/$(basename $(notdir $(SCENARIO)))
+# Beside the recording, not in it: outputs inside an input folder are refused.
+ODOMETRY_OUT ?= $(RECORDING)_odometry.txt
 
 build-app: configure
 	cmake --build $(BUILD_DIR) -j $(JOBS) --target scantling scantling_example_cloud
@@ -37,8 +39,8 @@ run: build-app
 	@start=$$(date +%s); \
 	./$(BUILD_DIR)/apps/scantling sim $(SCENARIO) --out $(RECORDING) --force && \
 	echo "make run: recording in $(RECORDING) ($$(( $$(date +%s) - start )) s); read it with scantling::io::open_recording" && \
-	./$(BUILD_DIR)/apps/scantling odometry $(RECORDING) --out $(RECORDING)/odometry.txt $(ODOMETRY_ARGS) && \
-	echo "make run: odometry in $(RECORDING)/odometry.txt, drift above ($$(( $$(date +%s) - start )) s in all)"
+	./$(BUILD_DIR)/apps/scantling odometry $(RECORDING) --out $(ODOMETRY_OUT) $(ODOMETRY_ARGS) && \
+	echo "make run: odometry in $(ODOMETRY_OUT), drift above ($$(( $$(date +%s) - start )) s in all)"
 
 test: build
 	ctest --test-dir $(BUILD_DIR) --output-on-failure -j $(JOBS)
