@@ -103,6 +103,8 @@ const std::vector<Eigen::Vector3d>& KdTree::points() const { return impl_->point
 
 std::span<const std::size_t> KdTree::leaf_order() const { return impl_->leaf_to_input; }
 
+std::span<const Eigen::Vector3d> KdTree::leaf_points() const { return impl_->leaf_points; }
+
 std::optional<Neighbor> KdTree::nearest(const Eigen::Vector3d& query) const {
     if (empty()) return std::nullopt;
     Neighbor n;
@@ -126,9 +128,16 @@ std::size_t KdTree::knn(const Eigen::Vector3d& query, std::size_t k,
 std::size_t KdTree::knn_within(const Eigen::Vector3d& query, std::size_t k, double max_distance_m,
                                std::vector<std::size_t>& indices,
                                std::vector<double>& distances_sq_m2) const {
-    if (!(max_distance_m >= 0.0) || !std::isfinite(max_distance_m)) {
-        throw ConfigError(
-            fmt::format("kdtree.max_distance_m = {}, expected finite >= 0", max_distance_m));
+    const std::size_t count = knn_within_leaf(query, k, max_distance_m, indices, distances_sq_m2);
+    impl_->to_input(indices.data(), count);
+    return count;
+}
+
+std::size_t KdTree::knn_within_leaf(const Eigen::Vector3d& query, std::size_t k,
+                                    double max_distance_m, std::vector<std::size_t>& indices,
+                                    std::vector<double>& distances_sq_m2) const {
+    if (!(max_distance_m >= 0.0)) {
+        throw ConfigError(fmt::format("kdtree.max_distance_m = {}, expected >= 0", max_distance_m));
     }
     const std::size_t capacity = std::min(k, size());
     indices.resize(capacity);
@@ -145,7 +154,6 @@ std::size_t KdTree::knn_within(const Eigen::Vector3d& query, std::size_t k, doub
     const std::size_t count = found.size();
     indices.resize(count);
     distances_sq_m2.resize(count);
-    impl_->to_input(indices.data(), count);
     return count;
 }
 

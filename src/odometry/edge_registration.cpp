@@ -242,6 +242,7 @@ EdgeRegistrationResult register_edges(const EdgeFeatures& edges, const LocalMap&
             const Vector6d& lambda = eig.eigenvalues();
             const double threshold = config.degeneracy_ratio * lambda(5);
             Vector6d step_s = Vector6d::Zero();
+            Vector6d observed_s = Vector6d::Zero();  // step_s along the well-observed directions
             int degenerate = 0;
             // Without remapping, a tiny floor keeps a truly null direction from blowing up.
             const double floor = 1e-12 * std::max(lambda(5), 1e-300);
@@ -251,8 +252,10 @@ EdgeRegistrationResult register_edges(const EdgeFeatures& edges, const LocalMap&
                 if ((weak && config.remap_degenerate) || !(lambda(j) > floor)) continue;
                 const Vector6d v = eig.eigenvectors().col(j);
                 step_s -= v * (v.dot(gs) / lambda(j));
+                if (!weak) observed_s -= v * (v.dot(gs) / lambda(j));
             }
             const Vector6d step = D * step_s;
+            const Vector6d tested = config.converge_on_observed ? Vector6d(D * observed_s) : step;
             T = se3_exp(step) * T;
             result.eigenvalues = lambda;
             result.min_eigen_ratio = lambda(5) > 0.0 ? std::max(lambda(0), 0.0) / lambda(5) : 0.0;
@@ -263,8 +266,8 @@ EdgeRegistrationResult register_edges(const EdgeFeatures& edges, const LocalMap&
                     result.degenerate_directions.col(c++) = eig.eigenvectors().col(j);
                 }
             }
-            converged = step.head<3>().norm() < config.convergence_translation_m &&
-                        step.tail<3>().norm() < config.convergence_rotation_rad;
+            converged = tested.head<3>().norm() < config.convergence_translation_m &&
+                        tested.tail<3>().norm() < config.convergence_rotation_rad;
             if (converged) break;
         }
         result.iterations = outer + 1;

@@ -171,22 +171,34 @@ FrameReport LidarOdometry::register_and_map(const EdgeFeatures& edges, double st
         }
     }
     const auto t1 = std::chrono::steady_clock::now();
-    std::vector<Eigen::Vector3d> world(edges.points.size());
-    for (std::size_t i = 0; i < world.size(); ++i) world[i] = T * edges.points[i];
-    map_.insert(world);
-    local_map_.update(map_, T.translation(), std::move(world));
-    if (!edges.plane_points.empty()) {
-        std::vector<Eigen::Vector3d> planes(edges.plane_points.size());
-        for (std::size_t i = 0; i < planes.size(); ++i) planes[i] = T * edges.plane_points[i];
-        plane_map_.insert(planes);
-        plane_local_map_.update(plane_map_, T.translation(), std::move(planes));
-    }
+    update_maps(edges, T);
     map_started_ = true;
     report.map_ms = elapsed_ms(t1);
     report.local_map_points = local_map_.size();
     report.T_odom_sensor = T;
     accept(T, stamp_s);
     return report;
+}
+
+void LidarOdometry::update_maps(const EdgeFeatures& edges, const Eigen::Isometry3d& T) {
+    auto update_edges = [&] {
+        std::vector<Eigen::Vector3d> world(edges.points.size());
+        for (std::size_t i = 0; i < world.size(); ++i) world[i] = T * edges.points[i];
+        map_.insert(world);
+        local_map_.update(map_, T.translation(), std::move(world));
+    };
+    auto update_planes = [&] {
+        if (edges.plane_points.empty()) return;
+        std::vector<Eigen::Vector3d> planes(edges.plane_points.size());
+        for (std::size_t i = 0; i < planes.size(); ++i) planes[i] = T * edges.plane_points[i];
+        plane_map_.insert(planes);
+        plane_local_map_.update(plane_map_, T.translation(), std::move(planes));
+    };
+    // The two maps share nothing: with two threads their inserts and k-d tree rebuilds overlap
+    // (the mapping stage is on the pipeline's critical path; the extraction stage waits on it).
+    parallel_for(config_.parallel, 2, 1, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i) i == 0 ? update_edges() : update_planes();
+    });
 }
 
 FrameReport LidarOdometry::skip_unreadable(double stamp_s, const std::string& message) {

@@ -99,6 +99,8 @@ ConfigSchema<EdgeRegistrationConfig> registration_schema() {
                "update below which it has converged, rad", kNonNegative)
         .field("degeneracy_ratio", &C::degeneracy_ratio,
                "eigenvalue ratio below which a direction is degenerate (0 = never)", kUnitInterval)
+        .field("converge_on_observed", &C::converge_on_observed,
+               "converged when the update along the non-degenerate directions is small")
         .field("range_weighting", &C::range_weighting, "weight 1 - (r - r_min)/(r_max - r_min)")
         .section("parallel", &C::parallel, parallel_schema(),
                  "threads of the correspondence search");

@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <scantling/core/error.hpp>
 #include <scantling/odometry/local_map.hpp>
 #include <string>
@@ -65,10 +66,10 @@ std::size_t merge_nearest(const KdTree* cells, const std::vector<std::size_t>& i
     std::size_t a = 0, b = 0;
     for (std::size_t i = 0; i < n; ++i) {
         if (b >= nb || (a < na && d_a[a] <= d_b[b])) {
-            points[i] = cells->points()[idx_a[a]];
+            points[i] = cells->leaf_points()[idx_a[a]];
             distances_sq_m2[i] = d_a[a++];
         } else {
-            points[i] = recent->points()[idx_b[b]];
+            points[i] = recent->leaf_points()[idx_b[b]];
             distances_sq_m2[i] = d_b[b++];
         }
     }
@@ -80,25 +81,31 @@ std::size_t merge_nearest(const KdTree* cells, const std::vector<std::size_t>& i
 std::size_t LocalMap::knn(const Eigen::Vector3d& query, std::size_t k,
                           std::vector<Eigen::Vector3d>& points,
                           std::vector<double>& distances_sq_m2) const {
-    // Small per-thread buffers: k is a handful, so a merge of two sorted lists beats anything
-    // clever, and the hot path allocates nothing.
-    thread_local std::vector<std::size_t> idx_a, idx_b;
-    thread_local std::vector<double> d_a, d_b;
-    idx_a.clear(), idx_b.clear(), d_a.clear(), d_b.clear();
-    if (cells_) cells_->knn(query, k, idx_a, d_a);
-    if (recent_) recent_->knn(query, k, idx_b, d_b);
-    return merge_nearest(cells_.get(), idx_a, d_a, recent_.get(), idx_b, d_b, k, points,
-                         distances_sq_m2);
+    return knn_within(query, k, std::numeric_limits<double>::infinity(), points, distances_sq_m2);
 }
 
 std::size_t LocalMap::knn_within(const Eigen::Vector3d& query, std::size_t k, double max_distance_m,
                                  std::vector<Eigen::Vector3d>& points,
                                  std::vector<double>& distances_sq_m2) const {
+    // Small per-thread buffers: k is a handful, so a merge of two sorted lists beats anything
+    // clever, and the hot path allocates nothing.
     thread_local std::vector<std::size_t> idx_a, idx_b;
     thread_local std::vector<double> d_a, d_b;
     idx_a.clear(), idx_b.clear(), d_a.clear(), d_b.clear();
-    if (cells_) cells_->knn_within(query, k, max_distance_m, idx_a, d_a);
-    if (recent_) recent_->knn_within(query, k, max_distance_m, idx_b, d_b);
+    // The small recent part first: when it holds k points, only cell points at most as far as
+    // its k-th can enter the merged list, so that distance bounds the search of the large cell
+    // part (ties included: the merge puts cell points first on equal distance, as before).
+    double bound_m = max_distance_m;
+    if (recent_) {
+        recent_->knn_within_leaf(query, k, max_distance_m, idx_b, d_b);
+        if (d_b.size() == k && k > 0) {
+            // One ulp up: the square of the bound is then at least the k-th squared distance.
+            const double kth_m =
+                std::nextafter(std::sqrt(d_b.back()), std::numeric_limits<double>::infinity());
+            bound_m = std::min(bound_m, kth_m);
+        }
+    }
+    if (cells_) cells_->knn_within_leaf(query, k, bound_m, idx_a, d_a);
     return merge_nearest(cells_.get(), idx_a, d_a, recent_.get(), idx_b, d_b, k, points,
                          distances_sq_m2);
 }

@@ -88,6 +88,28 @@ TEST(KdTree, KnnWithinIsKnnCutAtTheBoundAndKeepsAPointExactlyOnIt) {
     EXPECT_EQ(KdTree({}).knn_within(queries[0], kK, 1.0, indices, d2), 0U);
 }
 
+TEST(KdTree, KnnWithinAnInfiniteBoundIsKnnAndLeafPositionsNameTheSamePoints) {
+    const auto points = random_points(2000, 5);
+    const KdTree tree(points);
+    constexpr std::size_t kK = 6;
+    constexpr double kInf = std::numeric_limits<double>::infinity();
+    std::vector<std::size_t> indices, positions;
+    std::vector<double> d2, leaf_d2;
+    for (const auto& q : random_points(100, 6)) {
+        const NeighborList all = tree.knn(q, kK);
+        ASSERT_EQ(tree.knn_within(q, kK, kInf, indices, d2), kK);
+        EXPECT_EQ(indices, all.indices);
+        EXPECT_EQ(d2, all.distances_sq_m2);
+        ASSERT_EQ(tree.knn_within_leaf(q, kK, 0.4, positions, leaf_d2),
+                  tree.knn_within(q, kK, 0.4, indices, d2));
+        EXPECT_EQ(leaf_d2, d2);
+        for (std::size_t j = 0; j < positions.size(); ++j) {
+            EXPECT_EQ(tree.leaf_points()[positions[j]], points[indices[j]]);
+            EXPECT_EQ(tree.leaf_order()[positions[j]], indices[j]);
+        }
+    }
+}
+
 TEST(KdTree, RadiusMatchesBruteForceAndIsSortedByDistance) {
     const auto points = random_points(2000, 3);
     const KdTree tree(points);

@@ -91,6 +91,36 @@ TEST(EdgeRegistration, ParallelLinesLeaveTheirDirectionAtThePrediction) {
     EXPECT_NEAR(r.T_world_sensor.translation().z(), 0.3, 1e-4);
 }
 
+TEST(EdgeRegistration, ConvergesOnTheObservedDirectionsWhenAskedTo) {
+    // Near-vertical lines: height is observed ~1e-4 as strongly as the rest (degenerate). One
+    // Gauss-Newton step from 2 cm off horizontally and 0.3 m off in height: the step along the
+    // observed directions is below the 5 cm threshold, the one along height is not.
+    const auto world = lines_cloud({{0.01, 0, 1}, {0, -0.01, 1}, {-0.01, 0.01, 1}}, 15, 9);
+    const LocalMap local = map_of(world);
+    const Eigen::Isometry3d T_true =
+        make_isometry(rotation_from_euler_zyx(0.02, 0.0, 0.0), Eigen::Vector3d(0.5, -0.3, 0.0));
+    Eigen::Isometry3d T_init = T_true;
+    T_init.translation() += Eigen::Vector3d(0.02, -0.01, 0.3);
+    const EdgeFeatures edges = edges_from(world, T_true, 2);
+    EdgeRegistrationConfig plain;
+    plain.max_iterations = 1;
+    plain.inner_iterations = 1;
+    plain.convergence_translation_m = 0.05;
+    plain.convergence_rotation_rad = 0.05;
+    EdgeRegistrationConfig observed = plain;
+    observed.converge_on_observed = true;
+    const auto a = register_edges(edges, local, T_init, 0.5, 40.0, plain);
+    const auto b = register_edges(edges, local, T_init, 0.5, 40.0, observed);
+    ASSERT_TRUE(a.registered && b.registered);
+    EXPECT_EQ(a.num_degenerate, 1);
+    EXPECT_GT(std::abs(a.degenerate_directions(2, 0)), 0.99);  // along z
+    EXPECT_FALSE(a.converged);
+    EXPECT_TRUE(b.converged);
+    // The flag changes the test, not the step.
+    EXPECT_TRUE(a.T_world_sensor.isApprox(b.T_world_sensor, 0.0));
+    EXPECT_LT((b.T_world_sensor.translation() - T_true.translation()).head<2>().norm(), 1e-3);
+}
+
 /// A floor at z = −1.7 m sampled every 0.2 m over 30 m × 30 m, tilted by 2° about x.
 std::vector<Eigen::Vector3d> tilted_floor() {
     std::vector<Eigen::Vector3d> pts;

@@ -82,6 +82,8 @@ class KdTree {
     /// entries are spatial neighbours. Querying the tree's own points in this order keeps the
     /// visited nodes in cache (much faster than input order for scattered inputs).
     std::span<const std::size_t> leaf_order() const;
+    /// The points in that order: leaf_points()[j] == points()[leaf_order()[j]].
+    std::span<const Eigen::Vector3d> leaf_points() const;
 
     /// The nearest point, or nullopt for an empty tree.
     std::optional<Neighbor> nearest(const Eigen::Vector3d& query) const;
@@ -95,11 +97,17 @@ class KdTree {
     /// knn() restricted to points at most `max_distance_m` away: the min(k, size()) nearest
     /// of those, nearest first (fewer when fewer are that close). The bound prunes the search,
     /// so a query whose neighbours are far away costs little; for the points it returns the
-    /// answer equals knn()'s. Throws ConfigError on a negative or non-finite distance.
+    /// answer equals knn()'s; +infinity is no bound (= knn()). Throws ConfigError on a negative
+    /// or NaN distance.
     std::size_t knn_within(const Eigen::Vector3d& query, std::size_t k, double max_distance_m,
                            std::vector<std::size_t>& indices,
                            std::vector<double>& distances_sq_m2) const;
-
+    /// knn_within() answering positions into leaf_points() instead of indices into points():
+    /// the search has just read those points, so fetching them costs no cache miss (the
+    /// odometry's local maps read the neighbours of ~10^4 queries a sweep).
+    std::size_t knn_within_leaf(const Eigen::Vector3d& query, std::size_t k, double max_distance_m,
+                                std::vector<std::size_t>& leaf_positions,
+                                std::vector<double>& distances_sq_m2) const;
     /// Every point strictly closer than `radius_m` (>= 0), nearest first, ties by index.
     /// Returns the count. Throws ConfigError on a negative or non-finite radius.
     std::size_t radius(const Eigen::Vector3d& query, double radius_m,

@@ -58,6 +58,11 @@ struct EdgeRegistrationConfig {
     /// Keep the initial pose along degenerate directions (set by LiODOM when a motion prior
     /// from another sensor gives the initial pose).
     bool remap_degenerate = false;
+    /// Converged when the update along the well-observed directions is below the thresholds,
+    /// whatever the degenerate ones do: along those the data hold the pose only weakly, so the
+    /// update keeps wandering there and the test would otherwise run every sweep along a
+    /// featureless hull to max_iterations. False: the whole update must fall below them.
+    bool converge_on_observed = false;
     bool range_weighting = true;  ///< ω as in SPEC §2 (false: ω = 1)
     ParallelConfig parallel{};
     void validate(std::string_view prefix = "registration") const;

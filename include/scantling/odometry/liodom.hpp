@@ -137,6 +137,8 @@ class LidarOdometry {
     Eigen::Isometry3d predict(double stamp_s, bool& time_gap,
                               const std::optional<Eigen::Isometry3d>& motion_hint = {}) const;
     void accept(const Eigen::Isometry3d& T, double stamp_s);
+    /// Inserts the registered sweep's edges and planar points (at T) into their maps.
+    void update_maps(const EdgeFeatures& edges, const Eigen::Isometry3d& T);
 
     LiodomConfig config_;
     mapping::CellMap map_;
