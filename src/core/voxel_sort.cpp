@@ -8,6 +8,7 @@
 #include <limits>
 #include <numeric>
 #include <tuple>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -119,29 +120,62 @@ std::vector<std::uint64_t> packed_items(const PointCloud& cloud, double voxel_si
     return items;
 }
 
-/// Stable LSD radix sort on bits [low_bit, low_bit + key_bits). All digit histograms come from
-/// one read pass; a pass whose digit is the same for every item is skipped.
-void radix_sort(std::vector<std::uint64_t>& items, int low_bit, int key_bits) {
+/// Fixed cut of [0, n) into chunks for the radix sort: enough to keep two threads busy, few
+/// enough that the per-chunk histograms stay small. The sorted result does not depend on it.
+struct Chunks {
+    std::size_t n = 0;
+    std::size_t count = 1;
+    std::size_t size = 0;
+
+    explicit Chunks(std::size_t items)
+        : n(items),
+          count(std::clamp<std::size_t>(items / 16384, 1, 16)),
+          size((items + count - 1) / count) {}
+    std::size_t begin(std::size_t c) const { return std::min(n, c * size); }
+    std::size_t end(std::size_t c) const { return std::min(n, (c + 1) * size); }
+};
+
+/// Stable LSD radix sort on bits [low_bit, low_bit + key_bits). Each pass counts digits per
+/// chunk, turns the counts into write offsets in (digit, chunk) order and scatters every chunk
+/// from its own offsets: chunks run in parallel and the result is the one stable order
+/// whatever the thread count. A pass whose digit is the same for every item is skipped.
+void radix_sort(std::vector<std::uint64_t>& items, int low_bit, int key_bits,
+                const ParallelConfig& par) {
     if (key_bits == 0) return;
     const int passes = (key_bits + 10) / 11;  // <= 2048 buckets: a histogram stays in L1
     const int digit_bits = (key_bits + passes - 1) / passes;
     const std::size_t buckets = std::size_t{1} << digit_bits;
     const std::uint64_t mask = buckets - 1;
-    std::vector<std::size_t> hist(static_cast<std::size_t>(passes) * buckets, 0);
-    for (const std::uint64_t it : items) {
-        for (int p = 0; p < passes; ++p)
-            ++hist[p * buckets + ((it >> (low_bit + p * digit_bits)) & mask)];
-    }
+    const Chunks chunks(items.size());
+    std::vector<std::size_t> offsets(chunks.count * buckets);
     std::vector<std::uint64_t> scratch(items.size());
     for (int p = 0; p < passes; ++p) {
-        const auto h = hist.begin() + static_cast<std::ptrdiff_t>(p * buckets);
-        if (std::find(h, h + static_cast<std::ptrdiff_t>(buckets), items.size()) !=
-            h + static_cast<std::ptrdiff_t>(buckets))
-            continue;
-        std::exclusive_scan(h, h + static_cast<std::ptrdiff_t>(buckets), h, std::size_t{0});
         const int shift = low_bit + p * digit_bits;
-        for (const std::uint64_t it : items)
-            scratch[h[static_cast<std::ptrdiff_t>((it >> shift) & mask)]++] = it;
+        const auto digit = [&](std::uint64_t it) { return (it >> shift) & mask; };
+        parallel_for(par, chunks.count, 1, [&](std::size_t c_begin, std::size_t c_end) {
+            for (std::size_t c = c_begin; c < c_end; ++c) {
+                std::size_t* h = &offsets[c * buckets];
+                std::fill(h, h + buckets, std::size_t{0});
+                for (std::size_t i = chunks.begin(c); i < chunks.end(c); ++i) ++h[digit(items[i])];
+            }
+        });
+        std::size_t next = 0;
+        bool one_digit = false;
+        for (std::size_t d = 0; d < buckets; ++d) {
+            const std::size_t first = next;
+            for (std::size_t c = 0; c < chunks.count; ++c) {
+                next += std::exchange(offsets[c * buckets + d], next);
+            }
+            one_digit = one_digit || next - first == items.size();
+        }
+        if (one_digit) continue;
+        parallel_for(par, chunks.count, 1, [&](std::size_t c_begin, std::size_t c_end) {
+            for (std::size_t c = c_begin; c < c_end; ++c) {
+                std::size_t* h = &offsets[c * buckets];
+                for (std::size_t i = chunks.begin(c); i < chunks.end(c); ++i)
+                    scratch[h[digit(items[i])]++] = items[i];
+            }
+        });
         items.swap(scratch);
     }
 }
@@ -149,17 +183,38 @@ void radix_sort(std::vector<std::uint64_t>& items, int low_bit, int key_bits) {
 VoxelRuns runs_from_packed(const PointCloud& cloud, double voxel_size_m, const GridLayout& layout,
                            int index_bits, const ParallelConfig& par) {
     std::vector<std::uint64_t> items = packed_items(cloud, voxel_size_m, layout, index_bits, par);
-    radix_sort(items, index_bits, layout.total_bits());
+    radix_sort(items, index_bits, layout.total_bits(), par);
     const std::uint64_t index_mask = (std::uint64_t{1} << index_bits) - 1;
+    const auto starts_voxel = [&](std::size_t i) {
+        return i == 0 || (items[i] >> index_bits) != (items[i - 1] >> index_bits);
+    };
     VoxelRuns runs;
     runs.order.resize(items.size());
-    for (std::size_t i = 0; i < items.size(); ++i) {
-        runs.order[i] = static_cast<std::size_t>(items[i] & index_mask);
-        if (i == 0 || (items[i] >> index_bits) != (items[i - 1] >> index_bits)) {
-            runs.starts.push_back(i);
+    // Two passes over the same chunks: count each chunk's voxel starts, then write them from
+    // the chunk's offset, so the parallel result is the serial one.
+    const Chunks chunks(items.size());
+    std::vector<std::size_t> first_run(chunks.count + 1, 0);
+    parallel_for(par, chunks.count, 1, [&](std::size_t c_begin, std::size_t c_end) {
+        for (std::size_t c = c_begin; c < c_end; ++c) {
+            std::size_t count = 0;
+            for (std::size_t i = chunks.begin(c); i < chunks.end(c); ++i) {
+                runs.order[i] = static_cast<std::size_t>(items[i] & index_mask);
+                count += starts_voxel(i);
+            }
+            first_run[c + 1] = count;
         }
-    }
-    runs.starts.push_back(items.size());
+    });
+    std::partial_sum(first_run.begin(), first_run.end(), first_run.begin());
+    runs.starts.resize(first_run.back() + 1);
+    parallel_for(par, chunks.count, 1, [&](std::size_t c_begin, std::size_t c_end) {
+        for (std::size_t c = c_begin; c < c_end; ++c) {
+            std::size_t next = first_run[c];
+            for (std::size_t i = chunks.begin(c); i < chunks.end(c); ++i) {
+                if (starts_voxel(i)) runs.starts[next++] = i;
+            }
+        }
+    });
+    runs.starts.back() = items.size();
     return runs;
 }
 

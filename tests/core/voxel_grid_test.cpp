@@ -83,8 +83,9 @@ TEST(VoxelGrid, RingTieGoesToLowestAndOpposedNormalsKeepFirst) {
     EXPECT_EQ(down.normals[0], Eigen::Vector3d(0, 0, 1));
 }
 
+// 70,000 points: several radix-sort chunks, whose counts and offsets must compose.
 TEST(VoxelGrid, MatchesBruteForceMapOfFlooredIndices) {
-    const PointCloud cloud = random_cloud(20000, 1);
+    const PointCloud cloud = random_cloud(70000, 1);
     constexpr double kVoxelM = 0.7;
     std::map<std::tuple<long, long, long>, std::pair<Eigen::Vector3d, int>> expected;
     for (const auto& p : cloud.points) {

@@ -248,6 +248,22 @@ TEST(RayCaster, RejectsInvalidInput) {
     EXPECT_THROW(caster.cast_batch(rays, short_out), InputError);
     EXPECT_THROW(caster.cast_batch(rays, out, ParallelConfig{-1}), ConfigError);
 
+    // A large batch is checked in parallel chunks: the first bad ray is named on any count.
+    std::vector<Ray> many(10000);
+    for (auto& ray : many) ray.max_range_m = 5.0;
+    many[9000].min_range_m = -1.0;
+    many[5000].direction = {0, 0, 2};
+    std::vector<RayHit> many_out(many.size());
+    for (int threads : {1, 2}) {
+        try {
+            caster.cast_batch(many, many_out, ParallelConfig{threads});
+            ADD_FAILURE() << "no error on " << threads << " thread(s)";
+        } catch (const InputError& e) {
+            EXPECT_NE(std::string(e.what()).find("ray 5000: |direction| = 2"), std::string::npos)
+                << e.what();
+        }
+    }
+
     const std::vector<int> wrong_tags(room.mesh.num_triangles() - 1, 0);
     EXPECT_THROW(RayCaster(room.mesh, wrong_tags), InputError);
     TriangleMesh broken = room.mesh;
