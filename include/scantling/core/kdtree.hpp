@@ -108,6 +108,7 @@ class KdTree {
     std::size_t knn_within_leaf(const Eigen::Vector3d& query, std::size_t k, double max_distance_m,
                                 std::vector<std::size_t>& leaf_positions,
                                 std::vector<double>& distances_sq_m2) const;
+
     /// Every point strictly closer than `radius_m` (>= 0), nearest first, ties by index.
     /// Returns the count. Throws ConfigError on a negative or non-finite radius.
     std::size_t radius(const Eigen::Vector3d& query, double radius_m,
