@@ -73,6 +73,12 @@ void add_planes(const EdgeFeatures& edges, const std::vector<SurfacePatch>& patc
     }
 }
 
+/// Range of point i: its recorded range, or its norm when the features carry no ranges.
+double range_of(const std::vector<Eigen::Vector3d>& points, const std::vector<double>& ranges_m,
+                std::size_t i) {
+    return i < ranges_m.size() ? ranges_m[i] : points[i].norm();
+}
+
 /// The normal equations of every valid edge and planar correspondence at T.
 NormalEquations linearize_all(const EdgeFeatures& edges, const std::vector<EdgeLine>& lines,
                               const std::vector<double>& weights,
@@ -83,10 +89,6 @@ NormalEquations linearize_all(const EdgeFeatures& edges, const std::vector<EdgeL
     add_planes(edges, patches, plane_weights, T, huber_delta_m, ne);
     return ne;
 }
-
-}  // namespace
-
-namespace {
 
 /// The `num_neighbors` nearest map points of `query`, all within `max_neighbor_distance_m`:
 /// their centroid and the eigen-decomposition of their covariance (eigenvalues ascending).
@@ -183,7 +185,7 @@ EdgeRegistrationResult register_edges(const EdgeFeatures& edges, const LocalMap&
     std::vector<double> weights(n);
     double mean_range = 0.0;
     for (std::size_t i = 0; i < n; ++i) {
-        const double r = i < edges.ranges_m.size() ? edges.ranges_m[i] : edges.points[i].norm();
+        const double r = range_of(edges.points, edges.ranges_m, i);
         weights[i] = edge_range_weight(r, min_range_m, max_range_m, config.range_weighting);
         mean_range += r;
     }
@@ -196,8 +198,7 @@ EdgeRegistrationResult register_edges(const EdgeFeatures& edges, const LocalMap&
     const std::size_t m = plane_map && !plane_map->empty() ? edges.plane_points.size() : 0;
     std::vector<double> plane_weights(m);
     for (std::size_t i = 0; i < m; ++i) {
-        const double r = i < edges.plane_ranges_m.size() ? edges.plane_ranges_m[i]
-                                                         : edges.plane_points[i].norm();
+        const double r = range_of(edges.plane_points, edges.plane_ranges_m, i);
         plane_weights[i] = edge_range_weight(r, min_range_m, max_range_m, config.range_weighting);
     }
 
@@ -251,8 +252,9 @@ EdgeRegistrationResult register_edges(const EdgeFeatures& edges, const LocalMap&
                 if (weak) ++degenerate;
                 if ((weak && config.remap_degenerate) || !(lambda(j) > floor)) continue;
                 const Vector6d v = eig.eigenvectors().col(j);
-                step_s -= v * (v.dot(gs) / lambda(j));
-                if (!weak) observed_s -= v * (v.dot(gs) / lambda(j));
+                const Vector6d along = v * (v.dot(gs) / lambda(j));
+                step_s -= along;
+                if (!weak) observed_s -= along;
             }
             const Vector6d step = D * step_s;
             const Vector6d tested = config.converge_on_observed ? Vector6d(D * observed_s) : step;

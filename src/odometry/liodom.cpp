@@ -13,6 +13,15 @@ double elapsed_ms(std::chrono::steady_clock::time_point since) {
         .count();
 }
 
+/// The points (sensor frame) moved to the world at T, added to `map` and to `local` around T.
+void insert_at(const std::vector<Eigen::Vector3d>& points_sensor, const Eigen::Isometry3d& T,
+               mapping::CellMap& map, LocalMap& local) {
+    std::vector<Eigen::Vector3d> world(points_sensor.size());
+    for (std::size_t i = 0; i < world.size(); ++i) world[i] = T * points_sensor[i];
+    map.insert(world);
+    local.update(map, T.translation(), std::move(world));
+}
+
 LocalMapConfig plane_local_map_config(const LiodomConfig& config) {
     LocalMapConfig c = config.local_map;
     c.num_recent_sweeps = config.plane_recent_sweeps;
@@ -181,23 +190,14 @@ FrameReport LidarOdometry::register_and_map(const EdgeFeatures& edges, double st
 }
 
 void LidarOdometry::update_maps(const EdgeFeatures& edges, const Eigen::Isometry3d& T) {
-    auto update_edges = [&] {
-        std::vector<Eigen::Vector3d> world(edges.points.size());
-        for (std::size_t i = 0; i < world.size(); ++i) world[i] = T * edges.points[i];
-        map_.insert(world);
-        local_map_.update(map_, T.translation(), std::move(world));
-    };
-    auto update_planes = [&] {
-        if (edges.plane_points.empty()) return;
-        std::vector<Eigen::Vector3d> planes(edges.plane_points.size());
-        for (std::size_t i = 0; i < planes.size(); ++i) planes[i] = T * edges.plane_points[i];
-        plane_map_.insert(planes);
-        plane_local_map_.update(plane_map_, T.translation(), std::move(planes));
-    };
     // The two maps share nothing: with two threads their inserts and k-d tree rebuilds overlap
     // (the mapping stage is on the pipeline's critical path; the extraction stage waits on it).
     parallel_for(config_.parallel, 2, 1, [&](std::size_t begin, std::size_t end) {
-        for (std::size_t i = begin; i < end; ++i) i == 0 ? update_edges() : update_planes();
+        for (std::size_t i = begin; i < end; ++i) {
+            if (i == 0) insert_at(edges.points, T, map_, local_map_);
+            if (i == 1 && !edges.plane_points.empty())
+                insert_at(edges.plane_points, T, plane_map_, plane_local_map_);
+        }
     });
 }
 
