@@ -22,10 +22,6 @@ void check_index(int index, std::size_t size, std::string_view what, std::string
     }
 }
 
-bool contains(const Aabb& box, const Eigen::Vector3d& p) {
-    return (p.array() >= box.min.array()).all() && (p.array() <= box.max.array()).all();
-}
-
 double distance_to_segment(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
                            const Eigen::Vector3d& b) {
     const Eigen::Vector3d ab = b - a;
@@ -69,13 +65,6 @@ int find_surface(const WorldMetadata& metadata, std::string_view name) {
     return -1;
 }
 
-int compartment_at(const WorldMetadata& metadata, const Eigen::Vector3d& p) {
-    for (const Compartment& c : metadata.compartments) {
-        if (contains(c.bounds, p)) return c.id;
-    }
-    return -1;
-}
-
 int defect_at(const WorldMetadata& metadata, const Eigen::Vector3d& p, int surface_tag) {
     for (const Defect& d : metadata.defects) {
         if (d.surface_tag != surface_tag) continue;
@@ -89,38 +78,6 @@ int defect_at(const WorldMetadata& metadata, const Eigen::Vector3d& p, int surfa
         if (distance_m <= reach_m) return d.id;
     }
     return -1;
-}
-
-std::string_view to_string(ConnectionKind kind) {
-    switch (kind) {
-        case ConnectionKind::Manhole:
-            return "manhole";
-        case ConnectionKind::LevelTransition:
-            return "level_transition";
-        case ConnectionKind::Entry:
-            return "entry";
-    }
-    return "unknown";
-}
-
-std::string_view to_string(LandmarkKind kind) {
-    switch (kind) {
-        case LandmarkKind::FrameLongitudinal:
-            return "frame_longitudinal";
-        case LandmarkKind::ManholeCentre:
-            return "manhole_centre";
-    }
-    return "unknown";
-}
-
-std::string_view to_string(DefectKind kind) {
-    switch (kind) {
-        case DefectKind::Corrosion:
-            return "corrosion";
-        case DefectKind::Crack:
-            return "crack";
-    }
-    return "unknown";
 }
 
 }  // namespace scantling::sim

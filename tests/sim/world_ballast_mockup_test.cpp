@@ -174,7 +174,7 @@ TEST(BallastTankMockup, FrameLongitudinalLandmarksLieOnSurfaces) {
     const World& w = mockup();
     int checked = 0;
     for (const Landmark& l : w.metadata.landmarks) {
-        EXPECT_EQ(compartment_at(w.metadata, l.position) >= 0, true);
+        EXPECT_TRUE(io::compartment_at(w.metadata, l.position).has_value());
         if (l.kind != LandmarkKind::FrameLongitudinal) continue;
         EXPECT_LT(closest_point_on_mesh(w.mesh, l.position).distance_m, kOnSurfaceTol_m)
             << "landmark " << l.id;

@@ -1,6 +1,7 @@
 #include <scantling/core/error.hpp>
 #include <scantling/io/mesh_io.hpp>
 #include <scantling/io/ply.hpp>
+#include <scantling/io/structural_map.hpp>
 #include <scantling/sim/world_builders.hpp>
 #include <scantling/sim/world_export.hpp>
 
@@ -43,8 +44,9 @@ nlohmann::json read_json(const fs::path& path) {
 
 TEST(WorldExport, MetadataJsonListsEverythingAndReadsBackExactly) {
     const World world = build_ballast_tank_mockup();
-    const std::string text = metadata_to_json(world.metadata, world.surface_tags);
-    EXPECT_EQ(text, metadata_to_json(world.metadata, world.surface_tags));  // deterministic
+    const std::string text = io::structural_map_to_json(world.metadata, world.surface_tags);
+    EXPECT_EQ(text,
+              io::structural_map_to_json(world.metadata, world.surface_tags));  // deterministic
     const nlohmann::json j = nlohmann::json::parse(text);
     EXPECT_EQ(j["name"], "ballast_tank_mockup");
     EXPECT_EQ(j["compartments"].size(), 2u);
@@ -63,8 +65,8 @@ TEST(WorldExport, MetadataJsonListsEverythingAndReadsBackExactly) {
     for (const auto& run : j["triangle_surface_tags"]) tagged += run[1].get<std::size_t>();
     EXPECT_EQ(tagged, world.mesh.num_triangles());
     EXPECT_EQ(j["surfaces"][j["triangle_surface_tags"][0][0].get<int>()]["name"], "bottom");
-    EXPECT_FALSE(
-        nlohmann::json::parse(metadata_to_json(world.metadata)).contains("triangle_surface_tags"));
+    EXPECT_FALSE(nlohmann::json::parse(io::structural_map_to_json(world.metadata))
+                     .contains("triangle_surface_tags"));
 }
 
 TEST(WorldExport, WritesMapMeshAndMetadataIntoADirectory) {
@@ -85,6 +87,21 @@ TEST(WorldExport, WritesMapMeshAndMetadataIntoADirectory) {
     EXPECT_EQ(mesh.num_triangles(), world.mesh.num_triangles());
     const nlohmann::json j = read_json(dir.path() / "world" / "metadata.json");
     EXPECT_EQ(j["landmarks"].size(), world.metadata.landmarks.size());
+}
+
+TEST(WorldExport, ExportedMetadataReadsBackAsTheSameStructuralMap) {
+    const TempDir dir;
+    const World world = build_ballast_tank_mockup();
+    write_world((dir.path() / "world").string(), world, {.map_spacing_m = 0.1});
+    const io::StructuralMap map =
+        io::read_structural_map((dir.path() / "world" / "metadata.json").string());
+    EXPECT_EQ(map, world.metadata);
+    // The mock-up's layout, as the localisation will query it.
+    ASSERT_EQ(map.compartments.size(), 2u);
+    EXPECT_EQ(io::compartment_at(map, {1.0, 1.5, 0.9}), 0);
+    EXPECT_EQ(io::compartment_at(map, {4.0, 1.5, 0.9}), 1);
+    EXPECT_EQ(io::nearest_frame(map, {2.5, 2.1, 0.85}), 1);  // at the web frame's manhole
+    EXPECT_EQ(map.defects, world.metadata.defects);
 }
 
 TEST(WorldExport, MapSamplingIsDeterministicPerSeed) {

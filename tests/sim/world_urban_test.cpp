@@ -13,6 +13,7 @@
 #include <cmath>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 
 #include "scenario_test_support.hpp"
@@ -145,8 +146,8 @@ TEST(WorldUrban, EverySurfaceIsPresentAndTheMeshIsValidAndSmall) {
     ASSERT_EQ(w.metadata.compartments.size(), 9u);
     EXPECT_EQ(w.metadata.compartments[0].name, "street_i0");
     EXPECT_EQ(w.metadata.compartments[8].name, "street_j3");
-    EXPECT_EQ(compartment_at(w.metadata, {1.0, 30.0, 1.0}), 0);
-    EXPECT_EQ(compartment_at(w.metadata, {30.0, 30.0, 1.0}), -1);  // inside a block
+    EXPECT_EQ(io::compartment_at(w.metadata, {1.0, 30.0, 1.0}), 0);
+    EXPECT_EQ(io::compartment_at(w.metadata, {30.0, 30.0, 1.0}), std::nullopt);  // in a block
     // Buildings from 5 m to 25 m above the 15 cm sidewalk; nothing below the road.
     const Aabb b = compute_bounds(w.mesh.vertices);
     EXPECT_NEAR(b.min.z(), 0.0, kExactTol_m);
@@ -215,7 +216,7 @@ TEST(WorldUrban, ScenarioSectionParsesValidatesAndExports) {
     EXPECT_EQ(w.metadata.name, "urban");
     const PointCloud map = sample_map(w, 2.0, 1);
     EXPECT_GT(map.size(), 1000u);
-    EXPECT_NE(metadata_to_json(w.metadata).find("\"street_j1\""), std::string::npos);
+    EXPECT_NE(io::structural_map_to_json(w.metadata).find("\"street_j1\""), std::string::npos);
     // The schema checks ranges with the line; validate() checks what a table cannot.
     EXPECT_THROW(parse_scenario("world:\n  type: urban\n  urban: {street_width_m: 0}\n"),
                  ParseError);

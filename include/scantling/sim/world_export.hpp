@@ -4,7 +4,6 @@
 /// the mesh and the metadata as JSON.
 
 #include <cstdint>
-#include <span>
 #include <string>
 #include <string_view>
 
@@ -21,20 +20,12 @@ struct WorldExportConfig {
     void validate(std::string_view prefix = "world_export") const;
 };
 
-/// The metadata as indented JSON with keys in a fixed order and doubles printed so that they
-/// read back bit-exact (deterministic text). Layout: {"name", "surfaces", "compartments"
-/// (min/max corners), "connections" (compartment_b = -1 for the outside), "frames",
-/// "longitudinals", "landmarks", "defects"}, kinds as lower-case strings
-/// (to_string). When `surface_tags` is given it is appended run-length encoded as
-/// "triangle_surface_tags": [[tag, count], ...] in triangle order.
-std::string metadata_to_json(const WorldMetadata& metadata, std::span<const int> surface_tags = {});
-
 /// The CAD map: round(area / spacing²) points drawn uniformly over the whole mesh (hidden faces
 /// included), each with its triangle's normal, world frame. Deterministic for a given seed.
 PointCloud sample_map(const World& world, double spacing_m, std::uint64_t seed);
 
 /// Writes `<directory>/map.ply` (CAD map with normals), `<directory>/mesh.ply` (binary PLY)
-/// and `<directory>/metadata.json` (metadata_to_json with the surface tags), creating the
+/// and `<directory>/metadata.json` (io::structural_map_to_json with the surface tags), creating the
 /// directory if needed; each file is written atomically. Throws ConfigError for a bad
 /// config, InputError for an invalid world, FileError when a file cannot be written.
 void write_world(const std::string& directory, const World& world,

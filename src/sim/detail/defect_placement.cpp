@@ -127,7 +127,8 @@ void place_defects(World& world, const DefectPlacementConfig& config,
             }
             rejections = 0;
             d.id = static_cast<int>(defects.size());
-            d.compartment = compartment_at(world.metadata, d.centre + kStandoff_m * d.normal);
+            d.compartment =
+                io::compartment_at(world.metadata, d.centre + kStandoff_m * d.normal).value_or(-1);
             defects.push_back(d);
         }
     }
