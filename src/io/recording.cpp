@@ -106,7 +106,7 @@ FrameIndex read_frame_index(const std::string& directory, const char* folder,
     return index;
 }
 
-/// The LiDAR mounting extrinsic: exactly one KITTI 3×4 line.
+/// A mounting extrinsic (lidar/, depth/): exactly one KITTI 3×4 line.
 Eigen::Isometry3d read_extrinsic(const std::string& path) {
     const std::vector<Eigen::Isometry3d> poses = read_kitti_poses(path);
     if (poses.size() != 1) {
@@ -225,6 +225,10 @@ Recording open_recording(const std::string& directory) {
     recording.read_visible_defects();
     const std::string extrinsic = join(join(directory, layout::kLidarDir), layout::kExtrinsic);
     if (fs::exists(extrinsic)) recording.lidar_T_body_sensor_ = read_extrinsic(extrinsic);
+    const std::string depth_extrinsic =
+        join(join(directory, layout::kDepthDir), layout::kExtrinsic);
+    if (fs::exists(depth_extrinsic))
+        recording.depth_T_body_sensor_ = read_extrinsic(depth_extrinsic);
     const std::string imu = join(directory, layout::kImu), vio = join(directory, layout::kVio);
     if (fs::exists(imu)) recording.imu_ = read_imu_csv(imu);
     if (fs::exists(vio)) recording.vio_ = read_vio_csv(vio);

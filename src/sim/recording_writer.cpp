@@ -102,6 +102,10 @@ void RecordingWriter::add_depth_frame(const PointCloud& frame,
     ++counts_.depth_frames;
 }
 
+void RecordingWriter::set_depth_extrinsic(const Eigen::Isometry3d& T_body_sensor) {
+    depth_T_body_sensor_ = T_body_sensor;
+}
+
 void RecordingWriter::add_image(const RgbImage& image, double stamp_s,
                                 const Eigen::Isometry3d& T_world_sensor,
                                 std::span<const int> visible_defect_ids) {
@@ -144,15 +148,22 @@ void RecordingWriter::write_stream(const std::string& folder, const Stream& stre
     io::write_kitti_poses(path(folder + "/" + layout::kPoses), stream.poses);
 }
 
+void RecordingWriter::write_extrinsic(const std::string& folder,
+                                      const Eigen::Isometry3d& T_body_sensor) const {
+    const Eigen::Isometry3d extrinsic[] = {T_body_sensor};
+    io::write_kitti_poses(path(folder + "/" + layout::kExtrinsic), extrinsic);
+}
+
 void RecordingWriter::finish(const RecordingSummary& summary) {
     if (!ground_truth_.empty()) io::write_tum(path(layout::kGroundTruth), ground_truth_);
     write_stream(layout::kLidarDir, lidar_);
     if (has_lidar_extrinsic_ && !lidar_.stamps_s.empty()) {
-        const Eigen::Isometry3d extrinsic[] = {lidar_T_body_sensor_};
-        io::write_kitti_poses(path(std::string(layout::kLidarDir) + "/" + layout::kExtrinsic),
-                              extrinsic);
+        write_extrinsic(layout::kLidarDir, lidar_T_body_sensor_);
     }
     write_stream(layout::kDepthDir, depth_);
+    if (depth_T_body_sensor_ && !depth_.stamps_s.empty()) {
+        write_extrinsic(layout::kDepthDir, *depth_T_body_sensor_);
+    }
     write_stream(layout::kImagesDir, images_);
     if (counts_.images > 0) {
         write_text(path(std::string(layout::kImagesDir) + "/" + layout::kVisibleDefects),

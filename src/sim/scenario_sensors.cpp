@@ -199,6 +199,9 @@ class DepthSensor : public ScenarioSensor {
     void fire(const FireContext& c) override {
         const Eigen::Isometry3d T_world_body = c.vehicle.pose_at(c.stamp_s);
         const PointCloud frame = camera_.scan(c.scene, T_world_body, rng_, c.stamp_s, c.parallel);
+        if (c.writer.counts().depth_frames == 0) {
+            c.writer.set_depth_extrinsic(camera_.config().T_body_sensor);
+        }
         c.writer.add_depth_frame(frame, T_world_body * camera_.config().T_body_sensor);
     }
 

@@ -1,9 +1,11 @@
 // What the scenario runner records besides the raw sensor data: the VIO's feature quality
-// (from the scene and the lighting) and the defects in view in each camera image.
+// (from the scene and the lighting), the defects in view in each camera image and the depth
+// camera's mount.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -54,6 +56,40 @@ Scenario plate_scenario(const std::string& height_m, const std::string& light) {
         yaml.replace(at, 6, height_m);
     yaml.replace(yaml.find("LIGHT"), 5, light);
     return parse_scenario(yaml, "plate.yaml");
+}
+
+/// 1 s through the mock-up with a depth camera mounted off-centre and turned on every axis (so
+/// that a transposed or inverted mount cannot pass).
+const std::string kDepthScenario = R"(
+world:
+  type: ballast_tank_mockup
+vehicle:
+  type: scripted
+  trajectory:
+    type: waypoints
+    waypoints:
+      yaw_mode: face_travel
+      max_speed_mps: 0.3
+      waypoints:
+        - {position_m: [0.6, 2.1, 0.9]}
+        - {position_m: [1.6, 1.5, 1.1]}
+sensors:
+  - type: depth_camera
+    preset: l515
+    width: 320
+    rate_hz: 10
+    T_body_sensor: {xyz: [0.05, 0.02, -0.03], rpy_deg: [-100.0, 5.0, -80.0]}
+duration_s: 1.0
+seed: 3
+export: {world: false}
+)";
+
+// Poses are written as shortest round-trip doubles (KITTI) and quaternions (TUM): composing
+// them agrees to rounding; 1e-9 leaves room and still catches any wrong frame.
+constexpr double kPoseTolerance = 1e-9;
+
+double max_difference(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
+    return (a.matrix() - b.matrix()).cwiseAbs().maxCoeff();
 }
 
 io::Recording run(const Scenario& scenario, const std::string& name) {
@@ -138,6 +174,41 @@ TEST(ScenarioOutputs, RecordingsWithoutTheDefectFileStillOpen) {
     const io::Recording recording = io::open_recording(dir.string());
     EXPECT_EQ(recording.num_images(), 4u);
     EXPECT_TRUE(recording.image_visible_defects().empty());
+}
+
+TEST(ScenarioOutputs, DepthFramesComeWithTheCameraMount) {
+    const Scenario scenario = parse_scenario(kDepthScenario, "depth.yaml");
+    const io::Recording recording = run(scenario, "depth_mount");
+    ASSERT_EQ(recording.num_depth_frames(), 10u);
+    ASSERT_TRUE(recording.depth_T_body_sensor().has_value());
+    const Eigen::Isometry3d& T_body_sensor = *recording.depth_T_body_sensor();
+    EXPECT_LT(max_difference(T_body_sensor, scenario.sensors[0].T_body_sensor.to_isometry()),
+              kPoseTolerance);
+    // T_world_body at a frame's stamp (ground truth) times the mount is the frame's pose.
+    for (const std::size_t i : {std::size_t{3}, std::size_t{9}}) {
+        const double stamp_s = recording.depth_frames().stamps_s[i];
+        const auto& truth = recording.ground_truth();
+        const auto at = std::find_if(truth.begin(), truth.end(), [&](const io::StampedPose& p) {
+            return std::abs(p.stamp_s - stamp_s) < 1e-9;
+        });
+        ASSERT_NE(at, truth.end()) << "no ground truth at " << stamp_s;
+        EXPECT_LT(
+            max_difference(at->T_world_body * T_body_sensor, recording.depth_frames().poses_gt[i]),
+            kPoseTolerance)
+            << "frame " << i;
+    }
+}
+
+TEST(ScenarioOutputs, RecordingsWithoutTheDepthMountStillOpen) {
+    const fs::path dir = fs::path(::testing::TempDir()) /
+                         ("scantling_scenario_outputs_no_mount_" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    run_scenario(parse_scenario(kDepthScenario, "depth.yaml"), dir.string());
+    ASSERT_TRUE(fs::remove(dir / "depth" / "T_body_sensor.txt"));  // as older recordings
+    const io::Recording recording = io::open_recording(dir.string());
+    EXPECT_EQ(recording.num_depth_frames(), 10u);
+    EXPECT_FALSE(recording.depth_T_body_sensor().has_value());
+    fs::remove_all(dir);
 }
 
 }  // namespace

@@ -9,7 +9,10 @@
 ///   DIR/lidar/times.txt          sweep start stamp, seconds, one line per sweep
 ///   DIR/lidar/poses_gt.txt       T_world_sensor at the sweep start, KITTI 3×4, one per sweep
 ///   DIR/lidar/T_body_sensor.txt  mounting extrinsic, one KITTI 3×4 line
-///   DIR/depth/NNNNNN.ply, times.txt, poses_gt.txt      organised ToF frames (NaN = no return)
+///   DIR/depth/NNNNNN.ply, times.txt, poses_gt.txt      organised ToF frames (NaN = no return),
+///                                optical frame; poses_gt is T_world_sensor at the frame stamp
+///   DIR/depth/T_body_sensor.txt  depth camera mount, one KITTI 3×4 line (absent in recordings
+///                                written before it existed)
 ///   DIR/images/NNNNNN.png, times.txt, poses_gt.txt     RGB images
 ///   DIR/images/visible_defects.csv  index,stamp_s,defect_ids (ids in view, ';'-separated)
 ///   DIR/rosette/NNNNNN.bin, times.txt, poses_gt.txt    rosette LiDAR frames, as lidar/
@@ -173,6 +176,11 @@ class Recording {
     /// Organised frame i (NaN where no return), optical frame, stamp from times.txt.
     PointCloud read_depth_frame(std::size_t i) const;
     const FrameIndex& depth_frames() const { return depth_; }
+    /// Depth camera mounting extrinsic (optical frame), or nullopt when depth/T_body_sensor.txt
+    /// is absent (recordings written before it existed).
+    const std::optional<Eigen::Isometry3d>& depth_T_body_sensor() const {
+        return depth_T_body_sensor_;
+    }
 
     std::size_t num_images() const { return images_.size(); }
     /// Path of image i (PNG).
@@ -228,6 +236,7 @@ class Recording {
     std::vector<DvlRecord> dvl_;
     std::vector<WheelOdometryRecord> wheel_odometry_;
     Eigen::Isometry3d lidar_T_body_sensor_ = Eigen::Isometry3d::Identity();
+    std::optional<Eigen::Isometry3d> depth_T_body_sensor_;
     std::vector<StampedPose> ground_truth_;
     std::vector<ImuRecord> imu_;
     std::vector<VioRecord> vio_;

@@ -12,6 +12,7 @@
 
 #include <Eigen/Geometry>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <utility>
@@ -95,6 +96,9 @@ class RecordingWriter {
     void set_lidar_extrinsic(const Eigen::Isometry3d& T_body_sensor);
     /// Writes depth/NNNNNN.ply (organised, NaN where no return).
     void add_depth_frame(const PointCloud& frame, const Eigen::Isometry3d& T_world_sensor);
+    /// The depth camera's mount (optical frame), written as depth/T_body_sensor.txt by finish
+    /// when there are depth frames.
+    void set_depth_extrinsic(const Eigen::Isometry3d& T_body_sensor);
     /// Writes images/NNNNNN.png; `visible_defect_ids` (PinholeCamera::visible_defects) go to
     /// images/visible_defects.csv.
     void add_image(const RgbImage& image, double stamp_s, const Eigen::Isometry3d& T_world_sensor,
@@ -136,6 +140,8 @@ class RecordingWriter {
     };
     std::string path(const std::string& relative) const;
     void write_stream(const std::string& folder, const Stream& stream) const;
+    /// <folder>/T_body_sensor.txt, one KITTI line.
+    void write_extrinsic(const std::string& folder, const Eigen::Isometry3d& T_body_sensor) const;
     std::string summary_json(const RecordingSummary& summary) const;
     void write_sonar_meta(const SonarImage& image) const;
     /// Streams and CSVs of add_sonar ... add_wheel_odometry (recording_writer_extra.cpp).
@@ -151,6 +157,7 @@ class RecordingWriter {
     Stream images_;
     bool has_lidar_extrinsic_ = false;
     Eigen::Isometry3d lidar_T_body_sensor_ = Eigen::Isometry3d::Identity();
+    std::optional<Eigen::Isometry3d> depth_T_body_sensor_;
     std::string imu_csv_;
     std::string vio_csv_;
     std::string visible_defects_csv_;
