@@ -111,6 +111,31 @@ void run_odometry(const OdometryOptions& options, std::ostream& out);
 void print_drift(const std::vector<Eigen::Isometry3d>& ground_truth,
                  const std::vector<Eigen::Isometry3d>& estimate, std::ostream& out);
 
+struct LocalizeOptions {
+    std::string recording;  ///< simulator recording (depth/, vio.csv, imu.csv, world/)
+    std::string out;        ///< output folder
+    std::optional<std::string> config_path;       ///< YAML LocalizerConfig
+    std::optional<std::string> filter;            ///< ekf | ukf (overrides the config)
+    std::optional<std::string> method;            ///< icp | stein (overrides the config)
+    std::string start = "known";                  ///< known (true first pose) | unknown (kidnapped)
+    std::optional<double> rate_hz;                ///< registration rate (0 = every frame)
+    std::optional<std::string> map_path;          ///< default: RECORDING/world/map.ply
+    std::optional<std::string> metadata_path;     ///< default: RECORDING/world/metadata.json
+    std::optional<std::string> descriptor_cache;  ///< default: <map>.fpfh
+    bool no_descriptor_cache = false;
+    double latency_s = 0.1;  ///< frames reach the localiser this long after their capture
+    std::optional<std::size_t> max_frames;
+    bool print_config = false;
+    bool progress = true;
+    int num_threads = 0;
+};
+
+/// `scantling localize RECORDING --out DIR`: absolute localisation (localization/localizer.hpp)
+/// over a recording; writes DIR/trajectory.tum (fused, at the VIO rate), DIR/events.csv (one
+/// row per depth frame and per warning), DIR/summary.json (errors against the ground truth,
+/// counts, timings), all or none; prints the summary.
+void run_localize(const LocalizeOptions& options, std::ostream& out);
+
 struct EvalOptions {
     std::string ground_truth;             ///< --gt: KITTI pose file or TUM trajectory
     std::string estimate;                 ///< --est: same format as the ground truth

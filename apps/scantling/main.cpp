@@ -64,6 +64,16 @@ struct CommandLine {
     std::string odo_config;
     double odo_period_s = 0.1;
     std::size_t odo_max_frames = 0;
+    scantling::app::LocalizeOptions loc;
+    CLI::App* localize_cmd = nullptr;
+    struct {
+        std::string config, filter, method, map, metadata, cache;
+        double rate_hz = 0.0;
+        std::size_t max_frames = 0;
+        CLI::Option *config_opt = nullptr, *filter_opt = nullptr, *method_opt = nullptr,
+                    *map_opt = nullptr, *metadata_opt = nullptr, *cache_opt = nullptr,
+                    *rate_opt = nullptr, *max_frames_opt = nullptr;
+    } loc_cli;
 };
 
 /// One line, escaped: messages quote file names and file contents (terminal_output.hpp).
@@ -232,6 +242,75 @@ void define_odometry(CLI::App& app, CommandLine& cl) {
     add_threads_option(*cmd, cl);
 }
 
+void define_localize(CLI::App& app, CommandLine& cl) {
+    auto* cmd = cl.localize_cmd = app.add_subcommand(
+        "localize",
+        "Absolute localisation in a known map: depth frames registered, gated and fused with VIO");
+    auto& c = cl.loc_cli;
+    cmd->add_option("RECORDING", cl.loc.recording,
+                    "Recording with depth/, vio.csv, imu.csv (optional) and world/ (the map)")
+        ->required()
+        ->type_name("");
+    cmd->add_option("--out", cl.loc.out,
+                    "Output folder: trajectory.tum, events.csv, summary.json (all or none)")
+        ->type_name("DIR");
+    c.config_opt = cmd->add_option("--config", c.config,
+                                   "YAML localizer config (see --print-config for every key)")
+                       ->type_name("FILE");
+    c.filter_opt = cmd->add_option("--filter", c.filter, "Fusion filter (default: config, ekf)")
+                       ->type_name("ekf|ukf");
+    c.method_opt = cmd->add_option("--method", c.method,
+                                   "Tracking registration: point-to-plane ICP or Stein-ICP "
+                                   "(default: config, icp)")
+                       ->type_name("icp|stein");
+    cmd->add_option("--start", cl.loc.start,
+                    "known: the true first pose with 5 cm / 3 deg uncertainty; unknown: a "
+                    "kidnapped start, global search over every compartment (default known)")
+        ->type_name("known|unknown");
+    c.rate_opt = cmd->add_option("--rate", c.rate_hz,
+                                 "Registrations per second (0 = every frame; the sources: 0.1)")
+                     ->type_name("HZ")
+                     ->check(finite_number(scantling::app::LowerBound::kNonNegative));
+    c.map_opt = cmd->add_option("--map", c.map, "Map cloud (default RECORDING/world/map.ply)")
+                    ->type_name("FILE");
+    c.metadata_opt = cmd->add_option("--metadata", c.metadata,
+                                     "Structural map (default RECORDING/world/metadata.json)")
+                         ->type_name("FILE");
+    c.cache_opt = cmd->add_option("--descriptor-cache", c.cache,
+                                  "Map descriptor cache (default <map>.fpfh; rebuilt when stale)")
+                      ->type_name("FILE");
+    cmd->add_flag("--no-descriptor-cache", cl.loc.no_descriptor_cache,
+                  "Compute the map descriptors without reading or writing a cache");
+    cmd->add_option("--latency", cl.loc.latency_s,
+                    "Seconds after its capture a frame reaches the localiser (default 0.1); its "
+                    "registration is applied at the capture time")
+        ->type_name("S")
+        ->check(finite_number(scantling::app::LowerBound::kNonNegative));
+    c.max_frames_opt =
+        cmd->add_option("--max-frames", c.max_frames, "Only the first N depth frames")
+            ->type_name("N")
+            ->transform(whole_number_in(1, std::numeric_limits<std::size_t>::max()));
+    cmd->add_flag("--print-config", cl.loc.print_config,
+                  "Print the resolved config as YAML and exit");
+    cmd->add_flag("--no-progress", cl.no_progress, "No progress bar on stderr");
+    add_threads_option(*cmd, cl);
+}
+
+void run_localize(CommandLine& cl) {
+    auto& c = cl.loc_cli;
+    if (c.config_opt->count() > 0) cl.loc.config_path = c.config;
+    if (c.filter_opt->count() > 0) cl.loc.filter = c.filter;
+    if (c.method_opt->count() > 0) cl.loc.method = c.method;
+    if (c.rate_opt->count() > 0) cl.loc.rate_hz = c.rate_hz;
+    if (c.map_opt->count() > 0) cl.loc.map_path = c.map;
+    if (c.metadata_opt->count() > 0) cl.loc.metadata_path = c.metadata;
+    if (c.cache_opt->count() > 0) cl.loc.descriptor_cache = c.cache;
+    if (c.max_frames_opt->count() > 0) cl.loc.max_frames = c.max_frames;
+    cl.loc.progress = !cl.no_progress;
+    cl.loc.num_threads = cl.num_threads;
+    scantling::app::run_localize(cl.loc, std::cout);
+}
+
 void define_commands(CLI::App& app, CommandLine& cl) {
     app.set_version_flag("--version", std::string("scantling ") + SCANTLING_VERSION);
     app.add_flag("-v,--verbose", cl.verbose, "Debug logging on stderr");
@@ -269,6 +348,7 @@ void define_commands(CLI::App& app, CommandLine& cl) {
     define_register(app, cl);
     define_eval(app, cl);
     define_odometry(app, cl);
+    define_localize(app, cl);
     // Set last: subcommands created after it would inherit it.
     app.footer("Run 'scantling SUBCOMMAND --help' for the options of a subcommand.");
 }
@@ -305,6 +385,7 @@ void run(CommandLine& cl) {
         cl.odo.num_threads = cl.num_threads;
         return scantling::app::run_odometry(cl.odo, std::cout);
     }
+    if (cl.localize_cmd->parsed()) return run_localize(cl);
     if (cl.downsample_cmd->parsed() || cl.convert_voxel->count() > 0) {
         cl.convert.voxel_size_m = cl.voxel_size_m;
     }
@@ -320,8 +401,8 @@ int run_main(int argc, char** argv) {
         app.parse(argc, argv);
         if (app.get_subcommands().empty()) {
             return report_error(
-                "a subcommand is required: info, convert, downsample, sim, register, odometry or "
-                "eval" +
+                "a subcommand is required: info, convert, downsample, sim, register, odometry, "
+                "localize or eval" +
                 kSeeHelp);
         }
     } catch (const CLI::Success& e) {

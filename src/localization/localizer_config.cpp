@@ -1,0 +1,319 @@
+#include "scantling/localization/localizer_config.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include <scantling/core/error.hpp>
+#include <scantling/io/config_schema.hpp>
+
+namespace scantling::localization {
+namespace {
+
+using io::ConfigSchema;
+using io::kNonNegative;
+using io::kPositive;
+using io::kUnitInterval;
+
+void require(bool ok, std::string_view prefix, std::string_view field, double value,
+             std::string_view expected) {
+    if (!ok)
+        throw ConfigError(fmt::format("{}.{} = {}, expected {}", prefix, field, value, expected));
+}
+
+ConfigSchema<LikelihoodFieldConfig> likelihood_schema() {
+    using C = LikelihoodFieldConfig;
+    ConfigSchema<C> s;
+    s.field("resolution_m", &C::resolution_m, "cell edge, m", kPositive)
+        .field("sigma_m", &C::sigma_m, "score width, m", kPositive)
+        .field("margin_m", &C::margin_m, "grid beyond the map, m", kNonNegative)
+        .field("max_cells", &C::max_cells, "refuse larger grids", io::Range{.min = 1});
+    return s;
+}
+
+ConfigSchema<LocalizationMapConfig> map_schema() {
+    using C = LocalizationMapConfig;
+    ConfigSchema<registration::FpfhConfig> fpfh;
+    fpfh.field("radius_m", &registration::FpfhConfig::radius_m, "FPFH neighbourhood, m", kPositive)
+        .field("max_neighbors", &registration::FpfhConfig::max_neighbors,
+               "most neighbours per point", io::Range{.min = 2});
+    ConfigSchema<C> s;
+    s.field("voxel_size_m", &C::voxel_size_m, "map and frame voxels, m", kPositive)
+        .field("normal_neighbors", &C::normal_neighbors, "k for normals of a map without them",
+               io::Range{.min = 3})
+        .section("likelihood", &C::likelihood, likelihood_schema(),
+                 "likelihood field of the correlative re-localisation")
+        .field("compartment_margin_m", &C::compartment_margin_m,
+               "a compartment's region: its box grown by this, m", kNonNegative)
+        .section("fpfh", &C::fpfh, fpfh, "descriptors for re-localisation");
+    return s;
+}
+
+ConfigSchema<PoseFilterConfig> filter_schema() {
+    using C = PoseFilterConfig;
+    ConfigSchema<C> s;
+    s.enum_field("kind", &C::kind, {{"ekf", FilterKind::kEkf}, {"ukf", FilterKind::kUkf}},
+                 "fusion filter")
+        .field("position_random_walk_m_per_sqrt_m", &C::position_random_walk_m_per_sqrt_m,
+               "VIO drift per axis, m/sqrt(m)", kNonNegative)
+        .field("yaw_random_walk_rad_per_sqrt_m", &C::yaw_random_walk_rad_per_sqrt_m,
+               "VIO yaw drift, rad/sqrt(m)", kNonNegative)
+        .field("tilt_random_walk_rad_per_sqrt_m", &C::tilt_random_walk_rad_per_sqrt_m,
+               "VIO roll/pitch drift, rad/sqrt(m)", kPositive)
+        .field("position_random_walk_m_per_sqrt_s", &C::position_random_walk_m_per_sqrt_s,
+               "drift without motion, m/sqrt(s)", kNonNegative)
+        .field("yaw_random_walk_rad_per_sqrt_s", &C::yaw_random_walk_rad_per_sqrt_s,
+               "yaw drift without motion, rad/sqrt(s)", kNonNegative)
+        .field("poor_features_drift_gain", &C::poor_features_drift_gain,
+               "drift x (1 + gain (1 - feature quality))", kNonNegative)
+        .field("position_jitter_m", &C::position_jitter_m, "white noise per VIO pose, m", kPositive)
+        .field("attitude_jitter_rad", &C::attitude_jitter_rad, "white noise per VIO attitude, rad",
+               kPositive)
+        .field("velocity_sigma_mps", &C::velocity_sigma_mps, "VIO velocity noise, m/s",
+               kNonNegative)
+        .field("dropout_position_random_walk_m_per_sqrt_s",
+               &C::dropout_position_random_walk_m_per_sqrt_s, "while the VIO is invalid, m/sqrt(s)",
+               kPositive)
+        .field("dropout_yaw_random_walk_rad_per_sqrt_s", &C::dropout_yaw_random_walk_rad_per_sqrt_s,
+               "while the VIO is invalid, rad/sqrt(s)", kPositive)
+        .field("max_odometry_speed_mps", &C::max_odometry_speed_mps,
+               "faster VIO steps are jumps, m/s", kPositive)
+        .field("jump_position_sigma_m", &C::jump_position_sigma_m, "noise added at a jump, m",
+               kPositive)
+        .field("jump_yaw_sigma_rad", &C::jump_yaw_sigma_rad, "noise added at a jump, rad",
+               kPositive)
+        .field("history_s", &C::history_s, "how late a measurement may arrive, s", kPositive)
+        .field("ukf_alpha", &C::ukf_alpha, "UKF spread", kPositive)
+        .field("ukf_beta", &C::ukf_beta, "UKF prior knowledge (2 = Gaussian)", kNonNegative)
+        .field("ukf_kappa", &C::ukf_kappa, "UKF secondary scaling", kNonNegative);
+    return s;
+}
+
+ConfigSchema<AttitudeEstimatorConfig> attitude_schema() {
+    using C = AttitudeEstimatorConfig;
+    ConfigSchema<C> s;
+    s.field("accel_gain_per_s", &C::accel_gain_per_s, "accelerometer correction rate, 1/s",
+            kPositive)
+        .field("max_accel_deviation_mps2", &C::max_accel_deviation_mps2,
+               "no correction when | |f| - g | exceeds this, m/s^2", kPositive)
+        .field("gravity_mps2", &C::gravity_mps2, "m/s^2", kPositive)
+        .field("max_gap_s", &C::max_gap_s, "longer gaps restart the filter, s", kPositive)
+        .field("history_s", &C::history_s, "s", kPositive);
+    return s;
+}
+
+ConfigSchema<TrackingConfig> tracking_schema() {
+    using C = TrackingConfig;
+    ConfigSchema<registration::IcpConfig> icp;
+    using I = registration::IcpConfig;
+    icp.field("max_iterations", &I::max_iterations, "", io::Range{.min = 1})
+        .field("covariance_cell_size_m", &I::covariance_cell_size_m,
+               "cell of the clustered covariance, m", kPositive)
+        .field("map_error_sigma_m", &I::map_error_sigma_m, "map error per cell, m", kNonNegative);
+    ConfigSchema<registration::SteinIcpConfig> stein;
+    using S = registration::SteinIcpConfig;
+    stein.field("num_particles", &S::num_particles, "K", io::Range{.min = 2})
+        .field("iterations", &S::iterations, "T", io::Range{.min = 1})
+        .field("noise_sigma_m", &S::noise_sigma_m, "likelihood sigma, m", kPositive)
+        .field("seed", &S::seed, "plus the frame index");
+    ConfigSchema<C> s;
+    s.enum_field("method", &C::method,
+                 {{"icp", TrackingMethod::kIcp}, {"stein", TrackingMethod::kStein}},
+                 "local registration")
+        .section("icp", &C::icp, icp)
+        .section("stein", &C::stein, stein)
+        .field("correspondence_sigmas", &C::correspondence_sigmas,
+               "correspondence distance: this many predicted sigma + a voxel", kPositive)
+        .field("min_correspondence_distance_m", &C::min_correspondence_distance_m, "m", kPositive)
+        .field("max_correspondence_distance_m", &C::max_correspondence_distance_m, "m", kPositive);
+    return s;
+}
+
+ConfigSchema<RelocalizationConfig> relocalization_schema() {
+    using C = RelocalizationConfig;
+    ConfigSchema<registration::RobustRegistrationConfig> robust;
+    using R = registration::RobustRegistrationConfig;
+    robust.field("noise_bound_m", &R::noise_bound_m, "beta, m", kPositive)
+        .field("min_inliers", &R::min_inliers, "", io::Range{.min = 3});
+    ConfigSchema<registration::IcpConfig> refine;
+    refine
+        .field("max_correspondence_distance_m",
+               &registration::IcpConfig::max_correspondence_distance_m, "m", kPositive)
+        .field("max_iterations", &registration::IcpConfig::max_iterations, "", io::Range{.min = 1});
+    ConfigSchema<CorrelativeSearchConfig> correlative;
+    using K = CorrelativeSearchConfig;
+    correlative.field("translation_step_m", &K::translation_step_m, "position grid, m", kPositive)
+        .field("yaw_step_rad", &K::yaw_step_rad, "yaw grid, rad", kPositive)
+        .field("scan_voxel_m", &K::scan_voxel_m, "scan thinning voxel, m", kPositive)
+        .field("max_scan_points", &K::max_scan_points, "scan points scored", io::Range{.min = 10})
+        .field("min_clearance_m", &K::min_clearance_m, "body-to-map distance, m", kNonNegative)
+        .field("num_candidates", &K::num_candidates, "poses verified by ICP", io::Range{.min = 1});
+    ConfigSchema<C> s;
+    s.enum_field("method", &C::method,
+                 {{"correlative", RelocalizationMethod::kCorrelative},
+                  {"fpfh", RelocalizationMethod::kFpfh}},
+                 "global registration")
+        .section("correlative", &C::correlative, correlative)
+        .section("robust", &C::robust, robust)
+        .section("refine", &C::refine, refine)
+        .field("refine_voxel_m", &C::refine_voxel_m, "scan voxel of the first ICP pass, m",
+               kPositive)
+        .field("polish_correspondence_distance_m", &C::polish_correspondence_distance_m,
+               "second ICP pass, m", kPositive)
+        .field("normal_neighbors", &C::normal_neighbors, "k for the frame's normals",
+               io::Range{.min = 3})
+        .field("ambiguity_overlap_margin", &C::ambiguity_overlap_margin,
+               "candidates elsewhere this close in overlap are ambiguous", kUnitInterval)
+        .field("ambiguity_distance_m", &C::ambiguity_distance_m, "m", kPositive)
+        .field("ambiguity_yaw_rad", &C::ambiguity_yaw_rad, "rad", kPositive)
+        .field("failures_before_global", &C::failures_before_global,
+               "restricted failures before all compartments are searched", io::Range{.min = 1});
+    return s;
+}
+
+ConfigSchema<GateConfig> gates_schema() {
+    using C = GateConfig;
+    ConfigSchema<registration::AttitudeGateConfig> attitude;
+    attitude.field("max_difference_rad", &registration::AttitudeGateConfig::max_difference_rad,
+                   "roll/pitch against the IMU, rad", kPositive);
+    ConfigSchema<registration::SpeedGateConfig> speed;
+    speed.field("max_speed_mps", &registration::SpeedGateConfig::max_speed_mps,
+                "jump against the VIO, m/s", kPositive);
+    ConfigSchema<registration::OverlapGateConfig> overlap;
+    overlap
+        .field("min_overlap", &registration::OverlapGateConfig::min_overlap, "share",
+               io::Range{.min = 0.0, .min_exclusive = true, .max = 1.0})
+        .field("voxel_size_m", &registration::OverlapGateConfig::voxel_size_m, "m", kPositive);
+    ConfigSchema<C> s;
+    s.section("attitude", &C::attitude, attitude)
+        .section("speed", &C::speed, speed)
+        .section("overlap", &C::overlap, overlap)
+        .field("mahalanobis_threshold", &C::mahalanobis_threshold, "chi2(6) quantile", kPositive);
+    return s;
+}
+
+ConfigSchema<LocalizerConfig> localizer_schema() {
+    using C = LocalizerConfig;
+    ConfigSchema<ParallelConfig> parallel;
+    parallel.field("num_threads", &ParallelConfig::num_threads, "0 = all hardware threads",
+                   kNonNegative);
+    ConfigSchema<C> s;
+    s.section("map", &C::map, map_schema())
+        .section("filter", &C::filter, filter_schema())
+        .section("attitude", &C::attitude, attitude_schema())
+        .section("tracking", &C::tracking, tracking_schema())
+        .section("relocalization", &C::relocalization, relocalization_schema())
+        .section("gates", &C::gates, gates_schema())
+        .field("registration_period_s", &C::registration_period_s,
+               "shortest time between registrations, s (0 = every frame)", kNonNegative)
+        .field("max_rejections", &C::max_rejections, "rejected frames before re-localising",
+               io::Range{.min = 1})
+        .field("dropout_relocalization_s", &C::dropout_relocalization_s,
+               "VIO dropout that loses tracking, s", kPositive)
+        .field("min_points", &C::min_points, "fewest frame points to register",
+               io::Range{.min = 10})
+        .field("global_every_frame", &C::global_every_frame,
+               "register every frame globally, no tracking (the sources' pipeline)")
+        .field("start_compartment", &C::start_compartment, "-1 = unknown", io::Range{.min = -1})
+        .section("parallel", &C::parallel, parallel);
+    return s;
+}
+
+}  // namespace
+
+std::string_view to_string(TrackingMethod method) {
+    return method == TrackingMethod::kIcp ? "icp" : "stein";
+}
+
+TrackingMethod tracking_method_from_string(std::string_view name, std::string_view field) {
+    if (name == "icp") return TrackingMethod::kIcp;
+    if (name == "stein") return TrackingMethod::kStein;
+    throw ConfigError(fmt::format("{} = '{}', expected icp or stein", field, name));
+}
+
+void TrackingConfig::validate(std::string_view prefix) const {
+    icp.validate(std::string(prefix) + ".icp");
+    stein.validate(std::string(prefix) + ".stein");
+    require(std::isfinite(correspondence_sigmas) && correspondence_sigmas > 0, prefix,
+            "correspondence_sigmas", correspondence_sigmas, "finite > 0");
+    require(std::isfinite(min_correspondence_distance_m) && min_correspondence_distance_m > 0,
+            prefix, "min_correspondence_distance_m", min_correspondence_distance_m, "finite > 0");
+    require(std::isfinite(max_correspondence_distance_m) &&
+                max_correspondence_distance_m >= min_correspondence_distance_m,
+            prefix, "max_correspondence_distance_m", max_correspondence_distance_m,
+            ">= min_correspondence_distance_m");
+}
+
+std::string_view to_string(RelocalizationMethod method) {
+    return method == RelocalizationMethod::kCorrelative ? "correlative" : "fpfh";
+}
+
+void RelocalizationConfig::validate(std::string_view prefix) const {
+    correlative.validate(std::string(prefix) + ".correlative");
+    require(std::isfinite(refine_voxel_m) && refine_voxel_m > 0, prefix, "refine_voxel_m",
+            refine_voxel_m, "finite > 0");
+    require(std::isfinite(polish_correspondence_distance_m) && polish_correspondence_distance_m > 0,
+            prefix, "polish_correspondence_distance_m", polish_correspondence_distance_m,
+            "finite > 0");
+    match.validate(std::string(prefix) + ".match");
+    robust.validate(std::string(prefix) + ".robust");
+    refine.validate(std::string(prefix) + ".refine");
+    require(normal_neighbors >= 3, prefix, "normal_neighbors", normal_neighbors, ">= 3");
+    require(ambiguity_overlap_margin >= 0 && ambiguity_overlap_margin < 1, prefix,
+            "ambiguity_overlap_margin", ambiguity_overlap_margin, "in [0, 1)");
+    require(std::isfinite(ambiguity_distance_m) && ambiguity_distance_m > 0, prefix,
+            "ambiguity_distance_m", ambiguity_distance_m, "finite > 0");
+    require(std::isfinite(ambiguity_yaw_rad) && ambiguity_yaw_rad > 0, prefix, "ambiguity_yaw_rad",
+            ambiguity_yaw_rad, "finite > 0");
+    require(failures_before_global >= 1, prefix, "failures_before_global", failures_before_global,
+            ">= 1");
+}
+
+void GateConfig::validate(std::string_view prefix) const {
+    attitude.validate(std::string(prefix) + ".attitude");
+    speed.validate(std::string(prefix) + ".speed");
+    overlap.validate(std::string(prefix) + ".overlap");
+    require(std::isfinite(mahalanobis_threshold) && mahalanobis_threshold > 0, prefix,
+            "mahalanobis_threshold", mahalanobis_threshold, "finite > 0");
+}
+
+void LocalizerConfig::validate(std::string_view prefix) const {
+    const std::string p(prefix);
+    map.validate(p + ".map");
+    filter.validate(p + ".filter");
+    attitude.validate(p + ".attitude");
+    tracking.validate(p + ".tracking");
+    relocalization.validate(p + ".relocalization");
+    gates.validate(p + ".gates");
+    parallel.validate(p + ".parallel");
+    require(std::isfinite(registration_period_s) && registration_period_s >= 0, prefix,
+            "registration_period_s", registration_period_s, "finite >= 0");
+    require(max_rejections >= 1, prefix, "max_rejections", max_rejections, ">= 1");
+    require(std::isfinite(dropout_relocalization_s) && dropout_relocalization_s > 0, prefix,
+            "dropout_relocalization_s", dropout_relocalization_s, "finite > 0");
+    require(min_points >= 10, prefix, "min_points", static_cast<double>(min_points), ">= 10");
+    require(start_compartment >= -1, prefix, "start_compartment", start_compartment, ">= -1");
+}
+
+void LocalizerConfig::set_num_threads(int num_threads) {
+    parallel.num_threads = num_threads;
+    map.parallel.num_threads = num_threads;
+    tracking.icp.parallel.num_threads = num_threads;
+    tracking.stein.parallel.num_threads = num_threads;
+    relocalization.refine.parallel.num_threads = num_threads;
+    relocalization.robust.parallel.num_threads = num_threads;
+    relocalization.match.parallel.num_threads = num_threads;
+    relocalization.correlative.parallel.num_threads = num_threads;
+}
+
+LocalizerConfig load_localizer_config(const std::string& path) {
+    LocalizerConfig config = io::load_config(path, localizer_schema());
+    config.set_num_threads(config.parallel.num_threads);
+    return config;
+}
+
+std::string describe_localizer_config(const LocalizerConfig& config) {
+    return localizer_schema().describe(config);
+}
+
+}  // namespace scantling::localization

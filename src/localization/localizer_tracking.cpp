@@ -1,0 +1,109 @@
+// Tracking: a frame registered against the map from the filter's prediction (localizer.hpp).
+#include <fmt/format.h>
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+
+#include <scantling/core/point_cloud.hpp>
+#include <scantling/localization/localizer.hpp>
+#include <scantling/registration/quality.hpp>
+
+namespace scantling::localization {
+namespace {
+
+/// Largest position standard deviation of a twist covariance at p, metres.
+double position_sigma_m(const Matrix6d& twist, const Eigen::Vector3d& p) {
+    const Eigen::Matrix3d P = position_attitude_covariance(twist, p).topLeftCorner<3, 3>();
+    return std::sqrt(
+        std::max(Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(P).eigenvalues().maxCoeff(), 0.0));
+}
+
+/// Left-twist covariance of Stein particles about the chosen pose.
+Matrix6d particle_covariance(const registration::SteinIcpResult& r) {
+    Matrix6d C = Matrix6d::Zero();
+    const Eigen::Isometry3d inverse = r.T_target_source.inverse();
+    for (const Vector6d& particle : r.particles) {
+        const Vector6d e = se3_log(registration::isometry_from_pose_params(particle) * inverse);
+        C += e * e.transpose();
+    }
+    return C / static_cast<double>(std::max<std::size_t>(r.particles.size() - 1, 1));
+}
+
+struct Registered {
+    bool converged = false;
+    std::string status;
+    Eigen::Isometry3d T_world_sensor = Eigen::Isometry3d::Identity();
+    Matrix6d covariance = Matrix6d::Identity();
+};
+
+}  // namespace
+
+FrameEvent Localizer::track(const PointCloud& scan, const QueuedFrame& frame, FrameEvent event) {
+    event.mode = LocalizerMode::kTracking;
+    event.compartment = known_compartment_;
+    const double t = frame.cloud.stamp_s;
+    const std::optional<AbsolutePose> predicted = filter_.predict(t);
+    const std::optional<Eigen::Matrix3d> R_imu = imu_attitude(t);
+    if (!predicted || !R_imu) {
+        event.gate = "no_prediction";
+        event.reason = "the filter cannot predict the capture time (older than its history)";
+        return event;
+    }
+    const TrackingConfig& tc = config_.tracking;
+    const double sigma =
+        position_sigma_m(predicted->covariance, predicted->T_world_body.translation());
+    const double gate_m =
+        std::clamp(tc.correspondence_sigmas * sigma + map_->config().voxel_size_m,
+                   tc.min_correspondence_distance_m, tc.max_correspondence_distance_m);
+    const Eigen::Isometry3d guess = predicted->T_world_body * frame.T_body_sensor;
+    const MapRegion& map = map_->whole();
+    Registered reg;
+    if (tc.method == TrackingMethod::kIcp) {
+        registration::IcpConfig icp = tc.icp;
+        icp.max_correspondence_distance_m = gate_m;
+        const registration::RegistrationResult r =
+            registration::align(scan, map.cloud, *map.tree, guess, icp);
+        reg = {r.converged, r.status, r.T_target_source,
+               usable_covariance(r.covariance, r.information, 100.0)};
+    } else {
+        registration::SteinIcpConfig stein = tc.stein;
+        stein.max_correspondence_distance_m = std::max(gate_m, stein.max_correspondence_distance_m);
+        stein.seed = tc.stein.seed + frame.index;
+        const registration::SteinIcpResult r =
+            registration::stein_icp(scan, map.cloud, *map.tree, guess, stein);
+        reg = {r.fitness > 0.0, fmt::format("{} KDE modes", r.num_modes), r.T_target_source,
+               particle_covariance(r)};
+    }
+    const Eigen::Isometry3d T_world_body = reg.T_world_sensor * frame.T_body_sensor.inverse();
+    event.T_world_body = T_world_body;
+    if (!reg.converged) {
+        event.gate = "registration";
+        event.reason = reg.status;
+        reject(event);
+        return event;
+    }
+    event.overlap =
+        registration::overlap_ratio(transformed(scan, reg.T_world_sensor), *map.tree,
+                                    config_.gates.overlap.voxel_size_m, config_.parallel);
+    event.gate = common_gates(T_world_body, event.overlap, t, *R_imu, event.reason);
+    const AbsolutePose measured{t, T_world_body, reg.covariance};
+    if (event.gate.empty()) {
+        const std::optional<Innovation> in = filter_.innovation(measured);
+        event.mahalanobis_squared = in ? in->mahalanobis_squared : 0.0;
+        if (in && in->mahalanobis_squared > config_.gates.mahalanobis_threshold) {
+            event.gate = "mahalanobis";
+            event.reason = fmt::format("d² = {:.1f} > {:.1f}", in->mahalanobis_squared,
+                                       config_.gates.mahalanobis_threshold);
+        }
+    }
+    if (!event.gate.empty()) {
+        reject(event);
+        return event;
+    }
+    accept(measured, false);
+    event.outcome = FrameOutcome::kRegistered;
+    return event;
+}
+
+}  // namespace scantling::localization
