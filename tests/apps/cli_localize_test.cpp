@@ -1,0 +1,105 @@
+// `scantling localize`: end to end on a short simulated flight in the mock-up, plus bad input.
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "cli_fixture.hpp"
+
+namespace scantling::cli_test {
+namespace {
+
+// 5 s through the first compartment of the mock-up with an L515-class camera, IMU and VIO.
+const char* const kFlight = R"(world: {type: ballast_tank_mockup}
+vehicle:
+  type: scripted
+  trajectory:
+    type: waypoints
+    waypoints:
+      yaw_mode: face_travel
+      max_speed_mps: 0.3
+      waypoints:
+        - {position_m: [0.6, 2.1, 0.9]}
+        - {position_m: [2.0, 2.1, 0.9]}
+sensors:
+  - {type: depth_camera, preset: l515, width: 320, rate_hz: 10,
+     T_body_sensor: {xyz: [0.05, 0.0, 0.0], rpy_deg: [-90.0, 0.0, -90.0]}}
+  - {type: imu}
+  - {type: vio}
+duration_s: 5.0
+seed: 3
+export: {map_spacing_m: 0.02}
+)";
+
+class CliLocalize : public Cli {
+  protected:
+    void SetUp() override {
+        Cli::SetUp();
+        std::ofstream(path("s.yaml")) << kFlight;
+        const CliRun sim = run("sim " + quoted(path("s.yaml")) + " --out " + quoted(path("rec")) +
+                               " --no-progress");
+        ASSERT_EQ(sim.exit_code, 0) << sim.err;
+    }
+};
+
+TEST_F(CliLocalize, LocalisesAKnownAndAnUnknownStartAndWritesAllOutputs) {
+    for (const std::string start : {"known", "unknown"}) {
+        const std::string out = path("loc_" + start);
+        const CliRun r = run("localize " + quoted(path("rec")) + " --out " + quoted(out) +
+                             " --start " + start + " --filter ukf");
+        ASSERT_EQ(r.exit_code, 0) << r.err;
+        EXPECT_NE(r.err.find("localize: ["), std::string::npos) << r.err;  // the progress bar
+        EXPECT_NE(r.out.find("fused position error"), std::string::npos) << r.out;
+        const auto summary = nlohmann::json::parse(read_text(fs::path(out) / "summary.json"));
+        EXPECT_LT(summary["fused_error_m"]["mean"].get<double>(), 0.03) << start;
+        EXPECT_GT(summary["fused_error_m"]["count"].get<int>(), 100) << start;
+        EXPECT_EQ(summary["settings"]["filter"], "ukf");
+        const std::string events = read_text(fs::path(out) / "events.csv");
+        EXPECT_EQ(events.rfind("stamp_s,kind,index,outcome", 0), 0u);
+        EXPECT_GE(std::count(events.begin(), events.end(), '\n'), 50);
+        EXPECT_TRUE(fs::exists(fs::path(out) / "trajectory.tum"));
+    }
+    // The map descriptors were cached beside the map by the first run.
+    EXPECT_TRUE(fs::exists(path("rec") + "/world/map.ply.fpfh"));
+}
+
+TEST_F(CliLocalize, BadInputIsOneLineAndWritesNothing) {
+    const std::string rec = quoted(path("rec"));
+    expect_one_error_line(run("localize " + rec + " --out " + quoted(path("o")) + " --filter kf"),
+                          "--filter");
+    expect_one_error_line(run("localize " + rec + " --out " + quoted(path("o")) + " --start maybe"),
+                          "--start");
+    expect_one_error_line(run("localize " + rec + " --out " + quoted(path("rec/out"))), "rec/out");
+    std::ofstream(path("bad.json")) << "{\"name\": \"x\", \"compartments\": [{\"id\": 0}]}";
+    expect_one_error_line(run("localize " + rec + " --out " + quoted(path("o")) + " --metadata " +
+                              quoted(path("bad.json"))),
+                          "bad.json");
+    std::ofstream(path("c.yaml")) << "gates:\n  overlap:\n    min_overlap: 2\n";
+    expect_one_error_line(run("localize " + rec + " --out " + quoted(path("o")) + " --config " +
+                              quoted(path("c.yaml"))),
+                          "min_overlap");
+    // A recording without depth frames.
+    fs::remove_all(path("rec/depth"));
+    expect_one_error_line(run("localize " + rec + " --out " + quoted(path("o"))),
+                          "no depth frames");
+    expect_files({"bad.json", "c.yaml", "rec", "s.yaml"});
+}
+
+TEST_F(CliLocalize, RefusesToReplaceAFolderItDidNotWrite) {
+    fs::create_directories(path("o"));
+    std::ofstream(path("o/notes.txt")) << "mine";
+    expect_one_error_line(run("localize " + quoted(path("rec")) + " --out " + quoted(path("o")) +
+                              " --max-frames 3 --no-progress"),
+                          "notes.txt");
+    EXPECT_EQ(read_text(path("o/notes.txt")), "mine");
+}
+
+TEST_F(CliLocalize, PrintConfigListsEveryKey) {
+    const CliRun r = run("localize " + quoted(path("rec")) + " --print-config");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    for (const char* key : {"filter:", "kind: ekf", "mahalanobis_threshold",
+                            "registration_period_s", "correlative:", "global_every_frame"}) {
+        EXPECT_NE(r.out.find(key), std::string::npos) << key;
+    }
+}
+
+}  // namespace
+}  // namespace scantling::cli_test
