@@ -166,6 +166,10 @@ ConfigSchema<RelocalizationConfig> relocalization_schema() {
                "candidates elsewhere this close in overlap are ambiguous", kUnitInterval)
         .field("ambiguity_distance_m", &C::ambiguity_distance_m, "m", kPositive)
         .field("ambiguity_yaw_rad", &C::ambiguity_yaw_rad, "rad", kPositive)
+        .field("prior_sigmas", &C::prior_sigmas, "search box: prior position +- this many sigma",
+               kPositive)
+        .field("min_prior_radius_m", &C::min_prior_radius_m, "search box half-width at least, m",
+               kPositive)
         .field("failures_before_global", &C::failures_before_global,
                "restricted failures before all compartments are searched", io::Range{.min = 1});
     return s;
@@ -265,6 +269,10 @@ void RelocalizationConfig::validate(std::string_view prefix) const {
             "ambiguity_distance_m", ambiguity_distance_m, "finite > 0");
     require(std::isfinite(ambiguity_yaw_rad) && ambiguity_yaw_rad > 0, prefix, "ambiguity_yaw_rad",
             ambiguity_yaw_rad, "finite > 0");
+    require(std::isfinite(prior_sigmas) && prior_sigmas > 0, prefix, "prior_sigmas", prior_sigmas,
+            "finite > 0");
+    require(std::isfinite(min_prior_radius_m) && min_prior_radius_m > 0, prefix,
+            "min_prior_radius_m", min_prior_radius_m, "finite > 0");
     require(failures_before_global >= 1, prefix, "failures_before_global", failures_before_global,
             ">= 1");
 }

@@ -21,6 +21,7 @@ struct Localizer::Candidate {
     Eigen::Isometry3d T_world_body = Eigen::Isometry3d::Identity();
     Matrix6d covariance = Matrix6d::Identity();
     double overlap = 0.0;
+    bool degenerate = false;  ///< the view leaves a direction of the pose free
     std::string gate;  ///< "" when it passed the gates
     std::string reason;
 };
@@ -85,6 +86,7 @@ std::optional<Localizer::Candidate> Localizer::verify(const PointCloud& scan_sen
     c.compartment = compartment;
     c.T_world_body = r.T_target_source * T_body_sensor.inverse();
     c.covariance = usable_covariance(r.covariance, r.information, 100.0);
+    c.degenerate = r.degeneracy.degenerate || !r.covariance;
     c.overlap = registration::overlap_ratio(transformed(scan_sensor, r.T_target_source), *map.tree,
                                             config_.gates.overlap.voxel_size_m, config_.parallel);
     return c;
@@ -93,14 +95,18 @@ std::optional<Localizer::Candidate> Localizer::verify(const PointCloud& scan_sen
 std::vector<Localizer::Candidate> Localizer::relocalize_in(
     const PointCloud& scan_gravity, const PointCloud& scan_sensor,
     const Eigen::Isometry3d& T_gravity_sensor, const Eigen::Isometry3d& T_body_sensor,
-    int compartment) const {
+    int compartment, const std::optional<Aabb>& near) const {
     std::vector<Eigen::Isometry3d> guesses;  // T_world_gravity
     const RelocalizationConfig& rc = config_.relocalization;
     if (rc.method == RelocalizationMethod::kCorrelative) {
         const io::StructuralMap* structure = map_->structure();
         const io::Compartment* c =
             structure ? io::find_compartment(*structure, compartment) : nullptr;
-        const Aabb box = c ? c->bounds : compute_bounds(map_->whole().cloud);
+        Aabb box = c ? c->bounds : compute_bounds(map_->whole().cloud);
+        if (near) {  // around the prediction
+            box.min = box.min.cwiseMax(near->min);
+            box.max = box.max.cwiseMin(near->max);
+        }
         CorrelativeSearchConfig search = rc.correlative;
         search.parallel = config_.parallel;
         for (const SearchCandidate& s :
@@ -159,6 +165,24 @@ FrameEvent Localizer::relocalize(const PointCloud& scan, const QueuedFrame& fram
     const Eigen::Isometry3d T_gravity_sensor = T_gravity_body * frame.T_body_sensor;
     const PointCloud scan_gravity = transformed(scan, T_gravity_sensor);
 
+    // While the filter still has an estimate (lost after rejections, a dropout or a jump), the
+    // search stays near its prediction and a candidate must agree with it; after
+    // failures_before_global failures the prior is dropped too (it may be the wrong one). The
+    // sources' pipeline (global_every_frame) registers without a prior.
+    std::optional<AbsolutePose> prior;
+    if (!config_.global_every_frame && filter_.initialized() &&
+        failed_restricted_relocalizations_ < config_.relocalization.failures_before_global) {
+        prior = filter_.predict(t);
+    }
+    std::optional<Aabb> near;
+    if (prior) {
+        const double r = std::max(config_.relocalization.prior_sigmas *
+                                      largest_position_sigma_m(prior->covariance,
+                                                               prior->T_world_body.translation()),
+                                  config_.relocalization.min_prior_radius_m);
+        near = Aabb{prior->T_world_body.translation() - Eigen::Vector3d::Constant(r),
+                    prior->T_world_body.translation() + Eigen::Vector3d::Constant(r)};
+    }
     const std::vector<int> regions = regions_to_search();
     const bool restricted =
         regions.size() == 1 && regions.front() >= 0 && map_->structure()->compartments.size() > 1;
@@ -167,8 +191,21 @@ FrameEvent Localizer::relocalize(const PointCloud& scan, const QueuedFrame& fram
     std::optional<Candidate> first_failed;
     for (const int compartment : regions) {
         for (Candidate& c : relocalize_in(scan_gravity, scan, T_gravity_sensor, frame.T_body_sensor,
-                                          compartment)) {
+                                          compartment, near)) {
             c.gate = common_gates(c.T_world_body, c.overlap, t, *R_imu, c.reason);
+            if (c.gate.empty() && c.degenerate) {
+                c.gate = "degenerate";
+                c.reason = "the view leaves a direction of the pose free (a single wall)";
+            }
+            if (c.gate.empty() && prior) {
+                const auto in = filter_.innovation({t, c.T_world_body, c.covariance});
+                if (in && in->mahalanobis_squared > config_.gates.mahalanobis_threshold) {
+                    c.gate = "mahalanobis";
+                    c.reason = fmt::format("d² = {:.1f} against the prediction > {:.1f}",
+                                           in->mahalanobis_squared,
+                                           config_.gates.mahalanobis_threshold);
+                }
+            }
             if (c.gate.empty() &&
                 !inside_structure(map_->structure(), c.T_world_body.translation())) {
                 c.gate = "inside_map";
@@ -188,7 +225,7 @@ FrameEvent Localizer::relocalize(const PointCloud& scan, const QueuedFrame& fram
             event.T_world_body = first_failed->T_world_body;
             event.overlap = first_failed->overlap;
         }
-        if (restricted) ++failed_restricted_relocalizations_;
+        if (restricted || prior) ++failed_restricted_relocalizations_;
         reject(event);
         return event;
     }

@@ -1,7 +1,6 @@
 // Tracking: a frame registered against the map from the filter's prediction (localizer.hpp).
 #include <fmt/format.h>
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 
@@ -11,13 +10,6 @@
 
 namespace scantling::localization {
 namespace {
-
-/// Largest position standard deviation of a twist covariance at p, metres.
-double position_sigma_m(const Matrix6d& twist, const Eigen::Vector3d& p) {
-    const Eigen::Matrix3d P = position_attitude_covariance(twist, p).topLeftCorner<3, 3>();
-    return std::sqrt(
-        std::max(Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(P).eigenvalues().maxCoeff(), 0.0));
-}
 
 /// Left-twist covariance of Stein particles about the chosen pose.
 Matrix6d particle_covariance(const registration::SteinIcpResult& r) {
@@ -52,7 +44,7 @@ FrameEvent Localizer::track(const PointCloud& scan, const QueuedFrame& frame, Fr
     }
     const TrackingConfig& tc = config_.tracking;
     const double sigma =
-        position_sigma_m(predicted->covariance, predicted->T_world_body.translation());
+        largest_position_sigma_m(predicted->covariance, predicted->T_world_body.translation());
     const double gate_m =
         std::clamp(tc.correspondence_sigmas * sigma + map_->config().voxel_size_m,
                    tc.min_correspondence_distance_m, tc.max_correspondence_distance_m);

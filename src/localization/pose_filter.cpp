@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 
@@ -330,6 +331,14 @@ Matrix6d twist_covariance(const Matrix6d& position_attitude_covariance,
     Matrix6d N = Matrix6d::Identity();
     N.topRightCorner<3, 3>() = hat(p_world_body);  // ρ = δp − ω × p
     return N * position_attitude_covariance * N.transpose();
+}
+
+double largest_position_sigma_m(const Matrix6d& twist_covariance,
+                                const Eigen::Vector3d& p_world_body) {
+    const Eigen::Matrix3d P =
+        position_attitude_covariance(twist_covariance, p_world_body).topLeftCorner<3, 3>();
+    const double largest = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(P).eigenvalues().maxCoeff();
+    return std::sqrt(std::max(largest, 0.0));
 }
 
 Vector6d position_attitude_error(const Eigen::Isometry3d& T_world_body_true,

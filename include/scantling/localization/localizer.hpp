@@ -119,7 +119,7 @@ class Localizer {
                                          const PointCloud& scan_sensor,
                                          const Eigen::Isometry3d& T_gravity_sensor,
                                          const Eigen::Isometry3d& T_body_sensor,
-                                         int compartment) const;
+                                         int compartment, const std::optional<Aabb>& near) const;
     /// FPFH + robust 4-DoF solver: T_world_gravity, or nullopt.
     std::optional<Eigen::Isometry3d> fpfh_guess(const PointCloud& scan_gravity,
                                                 int compartment) const;

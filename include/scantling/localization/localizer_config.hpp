@@ -73,8 +73,12 @@ struct RelocalizationConfig {
     double ambiguity_overlap_margin = 0.05;
     double ambiguity_distance_m = 0.5;
     double ambiguity_yaw_rad = 0.35;
-    /// Failed re-localisations restricted to the current compartment before every compartment
-    /// is searched, >= 1.
+    /// While a prior exists the search box is its position ± this many σ, at least
+    /// min_prior_radius_m (metres): the correlative search's step and the VIO's drift.
+    double prior_sigmas = 3.0;
+    double min_prior_radius_m = 0.5;
+    /// Failed re-localisations near the prior or restricted to the current compartment before
+    /// every compartment is searched without a prior, >= 1.
     int failures_before_global = 5;
 
     void validate(std::string_view prefix = "relocalization") const;

@@ -198,6 +198,9 @@ Matrix6d position_attitude_covariance(const Matrix6d& twist_covariance,
 /// The inverse map: left-twist covariance from a (δp, δθ) covariance at p_world_body.
 Matrix6d twist_covariance(const Matrix6d& position_attitude_covariance,
                           const Eigen::Vector3d& p_world_body);
+/// Largest position standard deviation of a left-twist covariance at p_world_body, metres.
+double largest_position_sigma_m(const Matrix6d& twist_covariance,
+                                const Eigen::Vector3d& p_world_body);
 /// (δp, δθ) of the estimate against the truth, as FusedState::covariance defines them.
 Vector6d position_attitude_error(const Eigen::Isometry3d& T_world_body_true,
                                  const Eigen::Isometry3d& T_world_body_estimate);
