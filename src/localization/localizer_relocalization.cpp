@@ -22,7 +22,7 @@ struct Localizer::Candidate {
     Matrix6d covariance = Matrix6d::Identity();
     double overlap = 0.0;
     bool degenerate = false;  ///< the view leaves a direction of the pose free
-    std::string gate;  ///< "" when it passed the gates
+    std::string gate;         ///< "" when it passed the gates
     std::string reason;
 };
 
@@ -176,10 +176,10 @@ FrameEvent Localizer::relocalize(const PointCloud& scan, const QueuedFrame& fram
     }
     std::optional<Aabb> near;
     if (prior) {
-        const double r = std::max(config_.relocalization.prior_sigmas *
-                                      largest_position_sigma_m(prior->covariance,
-                                                               prior->T_world_body.translation()),
-                                  config_.relocalization.min_prior_radius_m);
+        const double r = std::max(
+            config_.relocalization.prior_sigmas *
+                largest_position_sigma_m(prior->covariance, prior->T_world_body.translation()),
+            config_.relocalization.min_prior_radius_m);
         near = Aabb{prior->T_world_body.translation() - Eigen::Vector3d::Constant(r),
                     prior->T_world_body.translation() + Eigen::Vector3d::Constant(r)};
     }
@@ -193,7 +193,7 @@ FrameEvent Localizer::relocalize(const PointCloud& scan, const QueuedFrame& fram
         for (Candidate& c : relocalize_in(scan_gravity, scan, T_gravity_sensor, frame.T_body_sensor,
                                           compartment, near)) {
             c.gate = common_gates(c.T_world_body, c.overlap, t, *R_imu, c.reason);
-            if (c.gate.empty() && c.degenerate) {
+            if (c.gate.empty() && c.degenerate && !prior) {  // nothing would fill the gap
                 c.gate = "degenerate";
                 c.reason = "the view leaves a direction of the pose free (a single wall)";
             }
@@ -201,9 +201,9 @@ FrameEvent Localizer::relocalize(const PointCloud& scan, const QueuedFrame& fram
                 const auto in = filter_.innovation({t, c.T_world_body, c.covariance});
                 if (in && in->mahalanobis_squared > config_.gates.mahalanobis_threshold) {
                     c.gate = "mahalanobis";
-                    c.reason = fmt::format("d² = {:.1f} against the prediction > {:.1f}",
-                                           in->mahalanobis_squared,
-                                           config_.gates.mahalanobis_threshold);
+                    c.reason =
+                        fmt::format("d² = {:.1f} against the prediction > {:.1f}",
+                                    in->mahalanobis_squared, config_.gates.mahalanobis_threshold);
                 }
             }
             if (c.gate.empty() &&
@@ -255,8 +255,10 @@ FrameEvent Localizer::relocalize(const PointCloud& scan, const QueuedFrame& fram
             return event;
         }
     }
-    // The sources' pipeline fuses every global registration as an update once running.
-    const bool restart = !(config_.global_every_frame && filter_.initialized() && !lost_);
+    // With a prior the result is fused with it (its free directions keep the prediction's); the
+    // sources' pipeline fuses every global registration as an update once running; otherwise
+    // the filter starts again from it.
+    const bool restart = !prior && !(config_.global_every_frame && filter_.initialized() && !lost_);
     accept(AbsolutePose{t, best->T_world_body, best->covariance}, restart);
     event.outcome = restart ? FrameOutcome::kRelocalized : FrameOutcome::kRegistered;
     return event;

@@ -337,7 +337,8 @@ double largest_position_sigma_m(const Matrix6d& twist_covariance,
                                 const Eigen::Vector3d& p_world_body) {
     const Eigen::Matrix3d P =
         position_attitude_covariance(twist_covariance, p_world_body).topLeftCorner<3, 3>();
-    const double largest = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(P).eigenvalues().maxCoeff();
+    const double largest =
+        Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(P).eigenvalues().maxCoeff();
     return std::sqrt(std::max(largest, 0.0));
 }
 

@@ -50,7 +50,8 @@ class LocalizerTest : public ::testing::Test {
     /// Feeds the recording in time order (frames `latency_s` after capture).
     static Result run(
         const LocalizerConfig& config, bool known_start, std::size_t max_frames = 1000,
-        double latency_s = 0.1, const std::function<void(PointCloud&)>& edit = [](PointCloud&) {}) {
+        double latency_s = 0.1, const std::function<void(PointCloud&)>& edit = [](PointCloud&) {},
+        const std::function<void(io::VioRecord&)>& edit_vio = [](io::VioRecord&) {}) {
         Localizer localizer(map_, config);
         const io::Recording& r = *recording_;
         if (known_start) {
@@ -61,7 +62,8 @@ class LocalizerTest : public ::testing::Test {
         std::size_t imu = 0, frame = 0;
         const std::size_t frames = std::min(max_frames, r.num_depth_frames());
         Result out;
-        for (const io::VioRecord& v : r.vio()) {
+        for (io::VioRecord v : r.vio()) {
+            edit_vio(v);
             for (; imu < r.imu().size() && r.imu()[imu].stamp_s <= v.stamp_s; ++imu) {
                 localizer.add_imu(r.imu()[imu]);
             }
@@ -172,6 +174,37 @@ TEST_F(LocalizerTest, RestartsAfterRejectionsAndHonoursTheRegistrationRate) {
     const auto counts = gates(r.events);
     EXPECT_GT(counts.at("rate"), static_cast<int>(0.8 * r.events.size()));
     EXPECT_LT(mean_error(r.fused), 0.03);
+}
+
+TEST_F(LocalizerTest, ReLocalisesNearThePredictionAfterAVioDropoutAndJump) {
+    // The VIO loses tracking for 1.5 s and holds its last pose (as a T265 does), then resumes
+    // where its drifting estimate has got to: a dropout, then a jump.
+    std::optional<Eigen::Isometry3d> held;
+    auto dropout = [&held](io::VioRecord& v) {
+        if (v.stamp_s > 6.0 && v.stamp_s < 7.5) {
+            if (!held) held = v.T_odom_body;
+            v.valid = false;
+            v.T_odom_body = *held;
+        }
+    };
+    LocalizerConfig config;
+    config.registration_period_s = 1.0;  // sparse registrations: the dropout outlasts 0.5 s
+    const Result r = run(
+        config, true, 1000, 0.1, [](PointCloud&) {}, dropout);
+    std::string warnings;
+    for (const LocalizerWarning& w : r.warnings) warnings += w.message + "; ";
+    EXPECT_NE(warnings.find("dropout"), std::string::npos) << warnings;
+    EXPECT_NE(warnings.find("jump"), std::string::npos) << warnings;
+    int relocalisations = 0;
+    for (const FrameEvent& e : r.events) {
+        if (e.mode == LocalizerMode::kRelocalization && e.outcome == FrameOutcome::kRegistered) {
+            ++relocalisations;
+            EXPECT_LT((e.T_world_body->translation() - truth_at(e.stamp_s).translation()).norm(),
+                      0.05);
+        }
+    }
+    EXPECT_GE(relocalisations, 1);  // fused with the prediction, not a restart
+    EXPECT_LT(mean_error(r.fused), 0.05);
 }
 
 TEST_F(LocalizerTest, FramesWithoutReturnsAreSkippedAndFaultsWarned) {
