@@ -161,7 +161,9 @@ void Fields::require(std::initializer_list<std::string_view> required,
     for (const std::string_view key : required) {
         if (!find(key)) fail(key, "missing (a required key)");
     }
-    for (const auto& [key, value] : object_.items()) {
+    // Not a structured binding: clang 14 (the fuzz build) cannot capture one in a lambda.
+    for (const auto& entry : object_.items()) {
+        const std::string& key = entry.key();
         const auto is = [&key](std::string_view k) { return k == key; };
         if (std::none_of(required.begin(), required.end(), is) &&
             std::none_of(optional.begin(), optional.end(), is)) {
@@ -244,13 +246,13 @@ Eigen::Vector3d Fields::vector(std::string_view key) const {
         !std::all_of(value.begin(), value.end(), is_number)) {
         fail(key, "expected 3 numbers");
     }
-    const Eigen::Vector3d v(value[0].get<double>(), value[1].get<double>(), value[2].get<double>());
+    Eigen::Vector3d v(value[0].get<double>(), value[1].get<double>(), value[2].get<double>());
     if (!v.allFinite()) fail(key, "expected 3 finite numbers");
     return v;
 }
 
 Eigen::Vector3d Fields::unit_vector(std::string_view key) const {
-    const Eigen::Vector3d v = vector(key);
+    Eigen::Vector3d v = vector(key);
     if (std::abs(v.norm() - 1.0) > kUnitTolerance) {
         fail(key, fmt::format("has norm {}, expected a unit vector", v.norm()));
     }
