@@ -44,9 +44,10 @@ function(scantling_add_module name)
   set_property(GLOBAL APPEND PROPERTY SCANTLING_MODULE_TARGETS ${target})
 endfunction()
 
-# scantling_add_test(<module> SOURCES ... DEPS ...): one gtest executable per module.
+# scantling_add_test(<module> SOURCES ... DEPS ... [FIXTURE name]): one gtest executable per
+# module; FIXTURE makes every test of it require that ctest fixture (e.g. a simulated recording).
 function(scantling_add_test module)
-  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
+  cmake_parse_arguments(ARG "" "FIXTURE" "SOURCES;DEPS" ${ARGN})
   set(target scantling_${module}_tests)
   add_executable(${target} ${ARG_SOURCES})
   target_link_libraries(${target} PRIVATE ${ARG_DEPS} GTest::gtest_main)
@@ -54,5 +55,10 @@ function(scantling_add_test module)
     SCANTLING_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
     SCANTLING_SHARED_DATA_DIR="${SCANTLING_SHARED_DATA_DIR}")
   scantling_set_target_options(${target})
-  gtest_discover_tests(${target} DISCOVERY_TIMEOUT 60 PROPERTIES LABELS ${module})
+  if(ARG_FIXTURE)
+    gtest_discover_tests(${target} DISCOVERY_TIMEOUT 60
+      PROPERTIES LABELS ${module} FIXTURES_REQUIRED ${ARG_FIXTURE})
+  else()
+    gtest_discover_tests(${target} DISCOVERY_TIMEOUT 60 PROPERTIES LABELS ${module})
+  endif()
 endfunction()
