@@ -81,4 +81,18 @@ if [[ " $only " == *" nees "* ]]; then
   for seed in $(seq 1 "$seeds"); do
     row "seed $seed" "$(simulate ballast_mockup_l515 "$seed")"
   done
+  # Pooled over the seeds: mean NEES of all samples and the 95 % band of that mean.
+  python3 - "$work" "$seeds" <<'PY'
+import json, math, sys
+work, seeds = sys.argv[1], int(sys.argv[2])
+total = n = 0
+for seed in range(1, seeds + 1):
+    s = json.load(open(f"{work}/out_seed_{seed}/summary.json"))["nees"]
+    total += s["mean"] * s["samples"]
+    n += s["samples"]
+k = 6 * n
+band = [k * (1 - 2 / (9 * k) + z * math.sqrt(2 / (9 * k))) ** 3 / n for z in (-1.959964, 1.959964)]
+print(f"\nPooled over {seeds} seeds: mean NEES {total / n:.2f} over {n} samples, "
+      f"95 % band of the mean [{band[0]:.2f}, {band[1]:.2f}] (6-DoF)")
+PY
 fi
