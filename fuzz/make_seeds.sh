@@ -11,7 +11,7 @@ root="$(cd "$(dirname "$0")/.." && pwd)"
 out="$1"
 cli="${2:-}"
 data="${SCANTLING_SHARED_DATA:-$root/../shared/data}"
-targets=(pcd ply kitti_bin kitti_poses tum config scenario recording)
+targets=(pcd ply kitti_bin kitti_poses tum config scenario recording structural_map)
 
 # Points kept from a real cloud: enough for every field to vary, small enough to mutate quickly.
 seed_points=48
@@ -97,9 +97,10 @@ pack_recording() {
 
 rm -rf "$out"
 for t in "${targets[@]}"; do mkdir -p "$out/$t"; done
-for t in pcd ply kitti_bin kitti_poses tum recording; do cp "$root"/fuzz/seeds/"$t"/* "$out/$t/"; done
+for t in pcd ply kitti_bin kitti_poses tum recording structural_map; do cp "$root"/fuzz/seeds/"$t"/* "$out/$t/"; done
 write_compressed_pcds "$out/pcd"
-cp "$root"/config/odometry/*.yaml "$root"/config/odometry/examples/*.yaml "$out/config/"
+cp "$root"/config/odometry/*.yaml "$root"/config/odometry/examples/*.yaml "$root"/config/localization/*.yaml \
+  "$out/config/"
 cp "$root"/scenarios/*.yaml "$root"/fuzz/seeds/recording_scenario.yaml "$out/scenario/"
 for t in config scenario; do cp "$root"/fuzz/seeds/yaml/* "$out/$t/"; done
 

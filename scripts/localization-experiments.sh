@@ -52,8 +52,7 @@ header() {
 }
 
 flight="$(simulate mockup_inspection_flight 3)"  # the scenario's seed (VIO 0.166 m)
-sources_config="$work/sources.yaml"
-printf 'global_every_frame: true\nrelocalization:\n  method: fpfh\n' >"$sources_config"
+sources_config="$root/config/localization/sources_pipeline.yaml"
 ours_global_config="$work/ours_global.yaml"
 printf 'global_every_frame: true\n' >"$ours_global_config"
 

@@ -8,7 +8,7 @@
 #   FUZZ_SECONDS    fuzzing time per target (60)
 #   FUZZ_SEED       libFuzzer's random seed (1: the same mutations every run, so a CI finding
 #                   is reproducible; 0 lets libFuzzer pick one, for wider local runs)
-#   FUZZ_TARGETS    targets to run (all: pcd ply kitti_bin kitti_poses tum config scenario recording)
+#   FUZZ_TARGETS    targets to run (all: pcd ply kitti_bin kitti_poses tum config scenario recording structural_map)
 #   JOBS            fuzzers run side by side, and build jobs (nproc)
 #   FUZZ_KEEP_GOING 1: keep fuzzing after a finding (libFuzzer -fork) to collect several
 #   CXX_FUZZ        the clang++ with libFuzzer (clang++-14, Debian's libclang-rt-14-dev)
@@ -20,7 +20,7 @@ fuzz_dir="$(mkdir -p "${FUZZ_DIR:-build-fuzz}" && cd "${FUZZ_DIR:-build-fuzz}" &
 seconds="${FUZZ_SECONDS:-60}"
 fuzz_seed="${FUZZ_SEED:-1}"
 jobs="${JOBS:-$(nproc)}"
-read -r -a targets <<< "${FUZZ_TARGETS:-pcd ply kitti_bin kitti_poses tum config scenario recording}"
+read -r -a targets <<< "${FUZZ_TARGETS:-pcd ply kitti_bin kitti_poses tum config scenario recording structural_map}"
 cxx="${CXX_FUZZ:-clang++-14}"
 cli="${SCANTLING_CLI:-$root/build/apps/scantling}"
 
@@ -55,6 +55,7 @@ dict_of() {
     pcd | ply | recording) echo "fuzz/dicts/$1.dict" ;;
     config | scenario) echo fuzz/dicts/yaml.dict ;;
     tum | kitti_poses) echo fuzz/dicts/numbers.dict ;;
+    structural_map) echo fuzz/dicts/json.dict ;;
   esac
 }
 
