@@ -163,7 +163,7 @@ std::optional<Eigen::Matrix3d> Localizer::imu_attitude(double stamp_s) const {
     return std::nullopt;
 }
 
-void Localizer::process(QueuedFrame& frame) {
+void Localizer::process(const QueuedFrame& frame) {
     FrameEvent event;
     event.index = frame.index;
     event.stamp_s = frame.cloud.stamp_s;

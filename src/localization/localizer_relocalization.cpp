@@ -40,6 +40,14 @@ double yaw_difference_rad(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
     return std::abs(std::remainder(std::atan2(x.y(), x.x()) - std::atan2(y.y(), y.x()), 2 * M_PI));
 }
 
+/// The search box around a prediction: its position ± prior_sigmas σ, at least the minimum.
+Aabb box_around(const AbsolutePose& prior, const RelocalizationConfig& rc) {
+    const Eigen::Vector3d p = prior.T_world_body.translation();
+    const double r = std::max(rc.prior_sigmas * largest_position_sigma_m(prior.covariance, p),
+                              rc.min_prior_radius_m);
+    return Aabb{p - Eigen::Vector3d::Constant(r), p + Eigen::Vector3d::Constant(r)};
+}
+
 bool inside_structure(const io::StructuralMap* structure, const Eigen::Vector3d& p) {
     return structure == nullptr || structure->compartments.empty() ||
            io::compartment_at(*structure, p).has_value();
@@ -150,6 +158,60 @@ std::optional<Eigen::Isometry3d> Localizer::fpfh_guess(const PointCloud& scan_gr
     return global.registration.T_target_source;
 }
 
+std::optional<AbsolutePose> Localizer::relocalization_prior(double stamp_s) const {
+    // While the filter still has an estimate (lost after rejections, a dropout or a jump), the
+    // search stays near its prediction and a candidate must agree with it; after
+    // failures_before_global failures the prior is dropped too (it may be the wrong one). The
+    // sources' pipeline (global_every_frame) registers without a prior.
+    if (config_.global_every_frame || !filter_.initialized() ||
+        failed_restricted_relocalizations_ >= config_.relocalization.failures_before_global) {
+        return std::nullopt;
+    }
+    return filter_.predict(stamp_s);
+}
+
+void Localizer::gate_candidate(Candidate& c, double stamp_s,
+                               const Eigen::Matrix3d& R_world_body_imu,
+                               const std::optional<AbsolutePose>& prior) const {
+    c.gate = common_gates(c.T_world_body, c.overlap, stamp_s, R_world_body_imu, c.reason);
+    if (!c.gate.empty()) return;
+    if (c.degenerate && !prior) {  // nothing would fill the free direction
+        c.gate = "degenerate";
+        c.reason = "the view leaves a direction of the pose free (a single wall)";
+    } else if (prior) {
+        const auto in = filter_.innovation({stamp_s, c.T_world_body, c.covariance});
+        if (in && in->mahalanobis_squared > config_.gates.mahalanobis_threshold) {
+            c.gate = "mahalanobis";
+            c.reason = fmt::format("d² = {:.1f} against the prediction > {:.1f}",
+                                   in->mahalanobis_squared, config_.gates.mahalanobis_threshold);
+        }
+    }
+    if (c.gate.empty() && !inside_structure(map_->structure(), c.T_world_body.translation())) {
+        c.gate = "inside_map";
+        c.reason = "the body would be outside every compartment";
+    }
+}
+
+std::string Localizer::ambiguity(const std::vector<Candidate>& passed,
+                                 const Candidate& best) const {
+    const RelocalizationConfig& rc = config_.relocalization;
+    for (const Candidate& other : passed) {
+        const Eigen::Vector3d a = best.T_world_body.translation();
+        const Eigen::Vector3d b = other.T_world_body.translation();
+        const bool elsewhere =
+            (b - a).norm() > rc.ambiguity_distance_m ||
+            yaw_difference_rad(other.T_world_body.linear(), best.T_world_body.linear()) >
+                rc.ambiguity_yaw_rad;
+        if (elsewhere && other.overlap >= best.overlap - rc.ambiguity_overlap_margin) {
+            return fmt::format(
+                "({:.2f}, {:.2f}, {:.2f}) and ({:.2f}, {:.2f}, {:.2f}) explain the frame alike "
+                "(overlap {:.3f} vs {:.3f})",
+                a.x(), a.y(), a.z(), b.x(), b.y(), b.z(), best.overlap, other.overlap);
+        }
+    }
+    return "";
+}
+
 FrameEvent Localizer::relocalize(const PointCloud& scan, const QueuedFrame& frame,
                                  FrameEvent event) {
     event.mode = LocalizerMode::kRelocalization;
@@ -164,25 +226,9 @@ FrameEvent Localizer::relocalize(const PointCloud& scan, const QueuedFrame& fram
     T_gravity_body.linear() = tilt_only(*R_imu);
     const Eigen::Isometry3d T_gravity_sensor = T_gravity_body * frame.T_body_sensor;
     const PointCloud scan_gravity = transformed(scan, T_gravity_sensor);
-
-    // While the filter still has an estimate (lost after rejections, a dropout or a jump), the
-    // search stays near its prediction and a candidate must agree with it; after
-    // failures_before_global failures the prior is dropped too (it may be the wrong one). The
-    // sources' pipeline (global_every_frame) registers without a prior.
-    std::optional<AbsolutePose> prior;
-    if (!config_.global_every_frame && filter_.initialized() &&
-        failed_restricted_relocalizations_ < config_.relocalization.failures_before_global) {
-        prior = filter_.predict(t);
-    }
-    std::optional<Aabb> near;
-    if (prior) {
-        const double r = std::max(
-            config_.relocalization.prior_sigmas *
-                largest_position_sigma_m(prior->covariance, prior->T_world_body.translation()),
-            config_.relocalization.min_prior_radius_m);
-        near = Aabb{prior->T_world_body.translation() - Eigen::Vector3d::Constant(r),
-                    prior->T_world_body.translation() + Eigen::Vector3d::Constant(r)};
-    }
+    const std::optional<AbsolutePose> prior = relocalization_prior(t);
+    const std::optional<Aabb> near =
+        prior ? std::optional(box_around(*prior, config_.relocalization)) : std::nullopt;
     const std::vector<int> regions = regions_to_search();
     const bool restricted =
         regions.size() == 1 && regions.front() >= 0 && map_->structure()->compartments.size() > 1;
@@ -192,25 +238,7 @@ FrameEvent Localizer::relocalize(const PointCloud& scan, const QueuedFrame& fram
     for (const int compartment : regions) {
         for (Candidate& c : relocalize_in(scan_gravity, scan, T_gravity_sensor, frame.T_body_sensor,
                                           compartment, near)) {
-            c.gate = common_gates(c.T_world_body, c.overlap, t, *R_imu, c.reason);
-            if (c.gate.empty() && c.degenerate && !prior) {  // nothing would fill the gap
-                c.gate = "degenerate";
-                c.reason = "the view leaves a direction of the pose free (a single wall)";
-            }
-            if (c.gate.empty() && prior) {
-                const auto in = filter_.innovation({t, c.T_world_body, c.covariance});
-                if (in && in->mahalanobis_squared > config_.gates.mahalanobis_threshold) {
-                    c.gate = "mahalanobis";
-                    c.reason =
-                        fmt::format("d² = {:.1f} against the prediction > {:.1f}",
-                                    in->mahalanobis_squared, config_.gates.mahalanobis_threshold);
-                }
-            }
-            if (c.gate.empty() &&
-                !inside_structure(map_->structure(), c.T_world_body.translation())) {
-                c.gate = "inside_map";
-                c.reason = "the body would be outside every compartment";
-            }
+            gate_candidate(c, t, *R_imu, prior);
             if (c.gate.empty()) {
                 passed.push_back(c);
             } else if (!first_failed || c.overlap > first_failed->overlap) {
@@ -229,37 +257,23 @@ FrameEvent Localizer::relocalize(const PointCloud& scan, const QueuedFrame& fram
         reject(event);
         return event;
     }
-    const auto best =
-        std::max_element(passed.begin(), passed.end(),
-                         [](const auto& a, const auto& b) { return a.overlap < b.overlap; });
-    event.T_world_body = best->T_world_body;
-    event.overlap = best->overlap;
-    event.compartment = best->compartment;
-    const RelocalizationConfig& rc = config_.relocalization;
-    for (const Candidate& other : passed) {
-        const bool elsewhere =
-            (other.T_world_body.translation() - best->T_world_body.translation()).norm() >
-                rc.ambiguity_distance_m ||
-            yaw_difference_rad(other.T_world_body.linear(), best->T_world_body.linear()) >
-                rc.ambiguity_yaw_rad;
-        if (elsewhere && other.overlap >= best->overlap - rc.ambiguity_overlap_margin) {
-            event.gate = "ambiguous";
-            event.reason = fmt::format(
-                "({:.2f}, {:.2f}, {:.2f}) and ({:.2f}, {:.2f}, {:.2f}) explain the frame alike "
-                "(overlap {:.3f} vs {:.3f})",
-                best->T_world_body.translation().x(), best->T_world_body.translation().y(),
-                best->T_world_body.translation().z(), other.T_world_body.translation().x(),
-                other.T_world_body.translation().y(), other.T_world_body.translation().z(),
-                best->overlap, other.overlap);
-            reject(event);
-            return event;
-        }
+    const Candidate& best =
+        *std::max_element(passed.begin(), passed.end(),
+                          [](const auto& a, const auto& b) { return a.overlap < b.overlap; });
+    event.T_world_body = best.T_world_body;
+    event.overlap = best.overlap;
+    event.compartment = best.compartment;
+    event.reason = ambiguity(passed, best);
+    if (!event.reason.empty()) {
+        event.gate = "ambiguous";
+        reject(event);
+        return event;
     }
     // With a prior the result is fused with it (its free directions keep the prediction's); the
     // sources' pipeline fuses every global registration as an update once running; otherwise
     // the filter starts again from it.
     const bool restart = !prior && !(config_.global_every_frame && filter_.initialized() && !lost_);
-    accept(AbsolutePose{t, best->T_world_body, best->covariance}, restart);
+    accept(AbsolutePose{t, best.T_world_body, best.covariance}, restart);
     event.outcome = restart ? FrameOutcome::kRelocalized : FrameOutcome::kRegistered;
     return event;
 }

@@ -29,6 +29,27 @@ struct Registered {
     Matrix6d covariance = Matrix6d::Identity();
 };
 
+/// ICP or Stein-ICP of `scan` (sensor frame) against the map from `guess` (T_world_sensor).
+Registered register_scan(const PointCloud& scan, const MapRegion& map,
+                         const Eigen::Isometry3d& guess, double gate_m, const TrackingConfig& tc,
+                         std::size_t frame_index) {
+    if (tc.method == TrackingMethod::kIcp) {
+        registration::IcpConfig icp = tc.icp;
+        icp.max_correspondence_distance_m = gate_m;
+        const registration::RegistrationResult r =
+            registration::align(scan, map.cloud, *map.tree, guess, icp);
+        return {r.converged, r.status, r.T_target_source,
+                usable_covariance(r.covariance, r.information, 100.0)};
+    }
+    registration::SteinIcpConfig stein = tc.stein;
+    stein.max_correspondence_distance_m = std::max(gate_m, stein.max_correspondence_distance_m);
+    stein.seed = tc.stein.seed + frame_index;  // every frame its own particles, reproducibly
+    const registration::SteinIcpResult r =
+        registration::stein_icp(scan, map.cloud, *map.tree, guess, stein);
+    return {r.fitness > 0.0, fmt::format("{} KDE modes", r.num_modes), r.T_target_source,
+            particle_covariance(r)};
+}
+
 }  // namespace
 
 FrameEvent Localizer::track(const PointCloud& scan, const QueuedFrame& frame, FrameEvent event) {
@@ -50,23 +71,7 @@ FrameEvent Localizer::track(const PointCloud& scan, const QueuedFrame& frame, Fr
                    tc.min_correspondence_distance_m, tc.max_correspondence_distance_m);
     const Eigen::Isometry3d guess = predicted->T_world_body * frame.T_body_sensor;
     const MapRegion& map = map_->whole();
-    Registered reg;
-    if (tc.method == TrackingMethod::kIcp) {
-        registration::IcpConfig icp = tc.icp;
-        icp.max_correspondence_distance_m = gate_m;
-        const registration::RegistrationResult r =
-            registration::align(scan, map.cloud, *map.tree, guess, icp);
-        reg = {r.converged, r.status, r.T_target_source,
-               usable_covariance(r.covariance, r.information, 100.0)};
-    } else {
-        registration::SteinIcpConfig stein = tc.stein;
-        stein.max_correspondence_distance_m = std::max(gate_m, stein.max_correspondence_distance_m);
-        stein.seed = tc.stein.seed + frame.index;
-        const registration::SteinIcpResult r =
-            registration::stein_icp(scan, map.cloud, *map.tree, guess, stein);
-        reg = {r.fitness > 0.0, fmt::format("{} KDE modes", r.num_modes), r.T_target_source,
-               particle_covariance(r)};
-    }
+    const Registered reg = register_scan(scan, map, guess, gate_m, tc, frame.index);
     const Eigen::Isometry3d T_world_body = reg.T_world_sensor * frame.T_body_sensor.inverse();
     event.T_world_body = T_world_body;
     if (!reg.converged) {

@@ -111,15 +111,15 @@ class Localizer {
     };
     struct Candidate;
 
-    void process(QueuedFrame& frame);
+    void process(const QueuedFrame& frame);
     FrameEvent track(const PointCloud& scan, const QueuedFrame& frame, FrameEvent event);
     FrameEvent relocalize(const PointCloud& scan, const QueuedFrame& frame, FrameEvent event);
     std::vector<int> regions_to_search();
     std::vector<Candidate> relocalize_in(const PointCloud& scan_gravity,
                                          const PointCloud& scan_sensor,
                                          const Eigen::Isometry3d& T_gravity_sensor,
-                                         const Eigen::Isometry3d& T_body_sensor,
-                                         int compartment, const std::optional<Aabb>& near) const;
+                                         const Eigen::Isometry3d& T_body_sensor, int compartment,
+                                         const std::optional<Aabb>& near) const;
     /// FPFH + robust 4-DoF solver: T_world_gravity, or nullopt.
     std::optional<Eigen::Isometry3d> fpfh_guess(const PointCloud& scan_gravity,
                                                 int compartment) const;
@@ -127,6 +127,13 @@ class Localizer {
     std::optional<Candidate> verify(const PointCloud& scan_sensor,
                                     const Eigen::Isometry3d& T_world_sensor_guess,
                                     const Eigen::Isometry3d& T_body_sensor, int compartment) const;
+    /// The prediction a re-localisation searches near and must agree with (see the .cpp).
+    std::optional<AbsolutePose> relocalization_prior(double stamp_s) const;
+    /// Every gate of a re-localisation candidate (sets c.gate and c.reason when one fails).
+    void gate_candidate(Candidate& c, double stamp_s, const Eigen::Matrix3d& R_world_body_imu,
+                        const std::optional<AbsolutePose>& prior) const;
+    /// Why `best` is ambiguous among `passed` ("" when it is not).
+    std::string ambiguity(const std::vector<Candidate>& passed, const Candidate& best) const;
     /// Attitude, overlap and speed gates; "" when all pass, else the gate's name (reason set).
     std::string common_gates(const Eigen::Isometry3d& T_world_body, double overlap, double stamp_s,
                              const Eigen::Matrix3d& R_world_body_imu, std::string& reason) const;
