@@ -29,7 +29,9 @@ const char* const kFrameFolders[] = {layout::kLidarDir, layout::kDepthDir,   lay
 // Files of the frame folders besides the frames (each folder has a subset).
 const char* const kFrameFolderFiles[] = {layout::kTimes, layout::kPoses, layout::kExtrinsic,
                                          layout::kVisibleDefects, layout::kSonarMeta};
-const char* const kWorldFiles[] = {"map.ply", "mesh.ply", "metadata.json"};  // write_world
+// write_world, and the descriptor cache `scantling localize` adds beside the map.
+const char* const kWorldFiles[] = {"map.ply", "mesh.ply", "metadata.json",
+                                   layout::kWorldMapDescriptorCache};
 
 template <std::size_t N>
 bool is_one_of(std::string_view name, const char* const (&names)[N]) {

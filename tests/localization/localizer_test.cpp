@@ -28,7 +28,9 @@ class LocalizerTest : public ::testing::Test {
         recording_ = new io::Recording(io::open_recording(SCANTLING_LOCALIZATION_RECORDING));
         map_ = std::make_shared<const LocalizationMap>(LocalizationMap::build(
             io::read_cloud(recording_->world_map_path()),
-            io::read_structural_map(recording_->world_metadata_path()), LocalizationMapConfig{}));
+            io::read_structural_map(recording_->world_metadata_path()), LocalizationMapConfig{},
+            // Each test runs in its own process: the descriptors are computed once, by the first.
+            recording_->world_map_path() + ".fpfh"));
     }
     void SetUp() override {
         if (recording_ == nullptr) {

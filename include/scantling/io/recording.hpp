@@ -28,7 +28,7 @@
 ///   DIR/imu.csv                  stamp_s,ax,ay,az,wx,wy,wz (sensor frame)
 ///   DIR/vio.csv                  stamp_s,valid,x,y,z,qx,qy,qz,qw,vx,vy,vz,var_x,...,var_rz,
 ///                                feature_quality (the last column is absent in old recordings)
-///   DIR/world/{map.ply, mesh.ply, metadata.json}
+///   DIR/world/{map.ply, mesh.ply, metadata.json}  (+ map.ply.fpfh, cached by `scantling localize`)
 ///   DIR/summary.json             what was simulated (deterministic)
 ///   DIR/timing.json              wall time of the run (the only non-deterministic file)
 ///
@@ -73,6 +73,9 @@ inline constexpr const char* kExtrinsic = "T_body_sensor.txt";
 inline constexpr const char* kImu = "imu.csv";
 inline constexpr const char* kVio = "vio.csv";
 inline constexpr const char* kWorldDir = "world";
+/// In world/: the FPFH descriptors of map.ply that `scantling localize` caches beside it (a
+/// derived file: `sim --force` replaces it with the rest of the recording).
+inline constexpr const char* kWorldMapDescriptorCache = "map.ply.fpfh";
 inline constexpr const char* kSummary = "summary.json";
 inline constexpr const char* kTiming = "timing.json";
 inline constexpr const char* kImuHeader = "stamp_s,ax,ay,az,wx,wy,wz";
