@@ -8,6 +8,8 @@
 #include <scantling/core/error.hpp>
 #include <scantling/core/se3.hpp>
 
+#include "detail/config_checks.hpp"
+
 namespace scantling::localization {
 
 void AttitudeEstimatorConfig::validate(std::string_view prefix) const {
@@ -17,11 +19,7 @@ void AttitudeEstimatorConfig::validate(std::string_view prefix) const {
         {gravity_mps2, "gravity_mps2"},
         {max_gap_s, "max_gap_s"},
         {history_s, "history_s"}};
-    for (const auto& [value, field] : positive) {
-        if (!(std::isfinite(value) && value > 0.0)) {
-            throw ConfigError(fmt::format("{}.{} = {}, expected finite > 0", prefix, field, value));
-        }
-    }
+    for (const auto& [value, field] : positive) detail::require_positive(value, prefix, field);
 }
 
 std::string_view to_string(ImuStatus status) {

@@ -9,14 +9,10 @@
 #include <scantling/core/kdtree.hpp>
 #include <scantling/core/voxel_grid.hpp>
 
+#include "detail/config_checks.hpp"
+
 namespace scantling::localization {
 namespace {
-
-void require(bool ok, std::string_view prefix, std::string_view field, double value,
-             std::string_view expected) {
-    if (!ok)
-        throw ConfigError(fmt::format("{}.{} = {}, expected {}", prefix, field, value, expected));
-}
 
 /// At most `n` points of `cloud`, evenly spaced in its (voxel key) order.
 std::vector<Eigen::Vector3d> thinned(const PointCloud& cloud, std::size_t n) {
@@ -52,31 +48,25 @@ std::vector<SearchCandidate> suppress(std::vector<SearchCandidate> all,
 }  // namespace
 
 void LikelihoodFieldConfig::validate(std::string_view prefix) const {
-    require(std::isfinite(resolution_m) && resolution_m > 0, prefix, "resolution_m", resolution_m,
-            "finite > 0");
-    require(std::isfinite(sigma_m) && sigma_m > 0, prefix, "sigma_m", sigma_m, "finite > 0");
-    require(std::isfinite(margin_m) && margin_m >= 0, prefix, "margin_m", margin_m, "finite >= 0");
-    require(max_cells >= 1, prefix, "max_cells", static_cast<double>(max_cells), ">= 1");
+    detail::require_positive(resolution_m, prefix, "resolution_m");
+    detail::require_positive(sigma_m, prefix, "sigma_m");
+    detail::require_non_negative(margin_m, prefix, "margin_m");
+    detail::require(max_cells >= 1, prefix, "max_cells", static_cast<double>(max_cells), ">= 1");
     parallel.validate(std::string(prefix) + ".parallel");
 }
 
 void CorrelativeSearchConfig::validate(std::string_view prefix) const {
-    require(std::isfinite(translation_step_m) && translation_step_m > 0, prefix,
-            "translation_step_m", translation_step_m, "finite > 0");
-    require(std::isfinite(yaw_step_rad) && yaw_step_rad > 0 && yaw_step_rad <= M_PI, prefix,
-            "yaw_step_rad", yaw_step_rad, "in (0, pi]");
-    require(std::isfinite(scan_voxel_m) && scan_voxel_m > 0, prefix, "scan_voxel_m", scan_voxel_m,
-            "finite > 0");
-    require(max_scan_points >= 10, prefix, "max_scan_points", static_cast<double>(max_scan_points),
-            ">= 10");
-    require(std::isfinite(min_clearance_m) && min_clearance_m >= 0, prefix, "min_clearance_m",
-            min_clearance_m, "finite >= 0");
-    require(num_candidates >= 1, prefix, "num_candidates", static_cast<double>(num_candidates),
-            ">= 1");
-    require(std::isfinite(separation_m) && separation_m >= 0, prefix, "separation_m", separation_m,
-            "finite >= 0");
-    require(std::isfinite(separation_yaw_rad) && separation_yaw_rad >= 0, prefix,
-            "separation_yaw_rad", separation_yaw_rad, "finite >= 0");
+    detail::require_positive(translation_step_m, prefix, "translation_step_m");
+    detail::require(std::isfinite(yaw_step_rad) && yaw_step_rad > 0 && yaw_step_rad <= M_PI, prefix,
+                    "yaw_step_rad", yaw_step_rad, "in (0, pi]");
+    detail::require_positive(scan_voxel_m, prefix, "scan_voxel_m");
+    detail::require(max_scan_points >= 10, prefix, "max_scan_points",
+                    static_cast<double>(max_scan_points), ">= 10");
+    detail::require_non_negative(min_clearance_m, prefix, "min_clearance_m");
+    detail::require(num_candidates >= 1, prefix, "num_candidates",
+                    static_cast<double>(num_candidates), ">= 1");
+    detail::require_non_negative(separation_m, prefix, "separation_m");
+    detail::require_non_negative(separation_yaw_rad, prefix, "separation_yaw_rad");
     parallel.validate(std::string(prefix) + ".parallel");
 }
 

@@ -10,6 +10,8 @@
 #include <scantling/core/normals.hpp>
 #include <scantling/core/voxel_grid.hpp>
 
+#include "detail/config_checks.hpp"
+
 namespace scantling::localization {
 namespace {
 
@@ -63,18 +65,9 @@ std::unique_ptr<MapRegion> compartment_region(const MapRegion& whole, const io::
 }  // namespace
 
 void LocalizationMapConfig::validate(std::string_view prefix) const {
-    if (!(std::isfinite(voxel_size_m) && voxel_size_m > 0.0)) {
-        throw ConfigError(
-            fmt::format("{}.voxel_size_m = {}, expected finite > 0", prefix, voxel_size_m));
-    }
-    if (normal_neighbors < 3) {
-        throw ConfigError(
-            fmt::format("{}.normal_neighbors = {}, expected >= 3", prefix, normal_neighbors));
-    }
-    if (!(std::isfinite(compartment_margin_m) && compartment_margin_m >= 0.0)) {
-        throw ConfigError(fmt::format("{}.compartment_margin_m = {}, expected finite >= 0", prefix,
-                                      compartment_margin_m));
-    }
+    detail::require_positive(voxel_size_m, prefix, "voxel_size_m");
+    detail::require(normal_neighbors >= 3, prefix, "normal_neighbors", normal_neighbors, ">= 3");
+    detail::require_non_negative(compartment_margin_m, prefix, "compartment_margin_m");
     fpfh.validate(std::string(prefix) + ".fpfh");
     likelihood.validate(std::string(prefix) + ".likelihood");
     parallel.validate(std::string(prefix) + ".parallel");
@@ -134,11 +127,11 @@ LocalizationMap LocalizationMap::build(const PointCloud& map,
                                  : out.cache_message_.empty() ? DescriptorSource::kComputed
                                                               : DescriptorSource::kRecomputedStale;
     }
-    KdTree tree(cloud.points);
+    auto whole = make_region(-1, std::move(cloud), {});
     if (!descriptors) {
         registration::FpfhConfig fpfh = config.fpfh;
         fpfh.parallel = config.parallel;
-        descriptors = registration::compute_fpfh(cloud, tree, fpfh);
+        descriptors = registration::compute_fpfh(whole->cloud, *whole->tree, fpfh);
         if (!cache_path.empty()) {
             try {
                 write_descriptor_cache(cache_path, key, *descriptors);
@@ -147,7 +140,8 @@ LocalizationMap LocalizationMap::build(const PointCloud& map,
             }
         }
     }
-    out.regions_.push_back(make_region(-1, std::move(cloud), std::move(*descriptors)));
+    whole->descriptors = std::move(*descriptors);
+    out.regions_.push_back(std::move(whole));
     LikelihoodFieldConfig likelihood = config.likelihood;
     likelihood.parallel = config.parallel;
     out.likelihood_ = LikelihoodField(out.regions_.front()->cloud, likelihood);

@@ -7,6 +7,8 @@
 #include <scantling/core/error.hpp>
 #include <scantling/io/config_schema.hpp>
 
+#include "detail/config_checks.hpp"
+
 namespace scantling::localization {
 namespace {
 
@@ -14,12 +16,6 @@ using io::ConfigSchema;
 using io::kNonNegative;
 using io::kPositive;
 using io::kUnitInterval;
-
-void require(bool ok, std::string_view prefix, std::string_view field, double value,
-             std::string_view expected) {
-    if (!ok)
-        throw ConfigError(fmt::format("{}.{} = {}, expected {}", prefix, field, value, expected));
-}
 
 ConfigSchema<LikelihoodFieldConfig> likelihood_schema() {
     using C = LikelihoodFieldConfig;
@@ -238,14 +234,13 @@ TrackingMethod tracking_method_from_string(std::string_view name, std::string_vi
 void TrackingConfig::validate(std::string_view prefix) const {
     icp.validate(std::string(prefix) + ".icp");
     stein.validate(std::string(prefix) + ".stein");
-    require(std::isfinite(correspondence_sigmas) && correspondence_sigmas > 0, prefix,
-            "correspondence_sigmas", correspondence_sigmas, "finite > 0");
-    require(std::isfinite(min_correspondence_distance_m) && min_correspondence_distance_m > 0,
-            prefix, "min_correspondence_distance_m", min_correspondence_distance_m, "finite > 0");
-    require(std::isfinite(max_correspondence_distance_m) &&
-                max_correspondence_distance_m >= min_correspondence_distance_m,
-            prefix, "max_correspondence_distance_m", max_correspondence_distance_m,
-            ">= min_correspondence_distance_m");
+    detail::require_positive(correspondence_sigmas, prefix, "correspondence_sigmas");
+    detail::require_positive(min_correspondence_distance_m, prefix,
+                             "min_correspondence_distance_m");
+    detail::require(std::isfinite(max_correspondence_distance_m) &&
+                        max_correspondence_distance_m >= min_correspondence_distance_m,
+                    prefix, "max_correspondence_distance_m", max_correspondence_distance_m,
+                    ">= min_correspondence_distance_m");
 }
 
 std::string_view to_string(RelocalizationMethod method) {
@@ -254,35 +249,28 @@ std::string_view to_string(RelocalizationMethod method) {
 
 void RelocalizationConfig::validate(std::string_view prefix) const {
     correlative.validate(std::string(prefix) + ".correlative");
-    require(std::isfinite(refine_voxel_m) && refine_voxel_m > 0, prefix, "refine_voxel_m",
-            refine_voxel_m, "finite > 0");
-    require(std::isfinite(polish_correspondence_distance_m) && polish_correspondence_distance_m > 0,
-            prefix, "polish_correspondence_distance_m", polish_correspondence_distance_m,
-            "finite > 0");
+    detail::require_positive(refine_voxel_m, prefix, "refine_voxel_m");
+    detail::require_positive(polish_correspondence_distance_m, prefix,
+                             "polish_correspondence_distance_m");
     match.validate(std::string(prefix) + ".match");
     robust.validate(std::string(prefix) + ".robust");
     refine.validate(std::string(prefix) + ".refine");
-    require(normal_neighbors >= 3, prefix, "normal_neighbors", normal_neighbors, ">= 3");
-    require(ambiguity_overlap_margin >= 0 && ambiguity_overlap_margin < 1, prefix,
-            "ambiguity_overlap_margin", ambiguity_overlap_margin, "in [0, 1)");
-    require(std::isfinite(ambiguity_distance_m) && ambiguity_distance_m > 0, prefix,
-            "ambiguity_distance_m", ambiguity_distance_m, "finite > 0");
-    require(std::isfinite(ambiguity_yaw_rad) && ambiguity_yaw_rad > 0, prefix, "ambiguity_yaw_rad",
-            ambiguity_yaw_rad, "finite > 0");
-    require(std::isfinite(prior_sigmas) && prior_sigmas > 0, prefix, "prior_sigmas", prior_sigmas,
-            "finite > 0");
-    require(std::isfinite(min_prior_radius_m) && min_prior_radius_m > 0, prefix,
-            "min_prior_radius_m", min_prior_radius_m, "finite > 0");
-    require(failures_before_global >= 1, prefix, "failures_before_global", failures_before_global,
-            ">= 1");
+    detail::require(normal_neighbors >= 3, prefix, "normal_neighbors", normal_neighbors, ">= 3");
+    detail::require(ambiguity_overlap_margin >= 0 && ambiguity_overlap_margin < 1, prefix,
+                    "ambiguity_overlap_margin", ambiguity_overlap_margin, "in [0, 1)");
+    detail::require_positive(ambiguity_distance_m, prefix, "ambiguity_distance_m");
+    detail::require_positive(ambiguity_yaw_rad, prefix, "ambiguity_yaw_rad");
+    detail::require_positive(prior_sigmas, prefix, "prior_sigmas");
+    detail::require_positive(min_prior_radius_m, prefix, "min_prior_radius_m");
+    detail::require(failures_before_global >= 1, prefix, "failures_before_global",
+                    failures_before_global, ">= 1");
 }
 
 void GateConfig::validate(std::string_view prefix) const {
     attitude.validate(std::string(prefix) + ".attitude");
     speed.validate(std::string(prefix) + ".speed");
     overlap.validate(std::string(prefix) + ".overlap");
-    require(std::isfinite(mahalanobis_threshold) && mahalanobis_threshold > 0, prefix,
-            "mahalanobis_threshold", mahalanobis_threshold, "finite > 0");
+    detail::require_positive(mahalanobis_threshold, prefix, "mahalanobis_threshold");
 }
 
 void LocalizerConfig::validate(std::string_view prefix) const {
@@ -294,13 +282,13 @@ void LocalizerConfig::validate(std::string_view prefix) const {
     relocalization.validate(p + ".relocalization");
     gates.validate(p + ".gates");
     parallel.validate(p + ".parallel");
-    require(std::isfinite(registration_period_s) && registration_period_s >= 0, prefix,
-            "registration_period_s", registration_period_s, "finite >= 0");
-    require(max_rejections >= 1, prefix, "max_rejections", max_rejections, ">= 1");
-    require(std::isfinite(dropout_relocalization_s) && dropout_relocalization_s > 0, prefix,
-            "dropout_relocalization_s", dropout_relocalization_s, "finite > 0");
-    require(min_points >= 10, prefix, "min_points", static_cast<double>(min_points), ">= 10");
-    require(start_compartment >= -1, prefix, "start_compartment", start_compartment, ">= -1");
+    detail::require_non_negative(registration_period_s, prefix, "registration_period_s");
+    detail::require(max_rejections >= 1, prefix, "max_rejections", max_rejections, ">= 1");
+    detail::require_positive(dropout_relocalization_s, prefix, "dropout_relocalization_s");
+    detail::require(min_points >= 10, prefix, "min_points", static_cast<double>(min_points),
+                    ">= 10");
+    detail::require(start_compartment >= -1, prefix, "start_compartment", start_compartment,
+                    ">= -1");
 }
 
 void LocalizerConfig::set_num_threads(int num_threads) {

@@ -8,22 +8,11 @@
 
 #include <scantling/core/error.hpp>
 
+#include "detail/config_checks.hpp"
 #include "detail/pose_filter_math.hpp"
 
 namespace scantling::localization {
 namespace {
-
-void require_positive(double value, std::string_view prefix, std::string_view field) {
-    if (!(std::isfinite(value) && value > 0.0)) {
-        throw ConfigError(fmt::format("{}.{} = {}, expected finite > 0", prefix, field, value));
-    }
-}
-
-void require_non_negative(double value, std::string_view prefix, std::string_view field) {
-    if (!(std::isfinite(value) && value >= 0.0)) {
-        throw ConfigError(fmt::format("{}.{} = {}, expected finite >= 0", prefix, field, value));
-    }
-}
 
 bool finite_pose(const AbsolutePose& pose) {
     return std::isfinite(pose.stamp_s) && pose.T_world_body.matrix().allFinite() &&
@@ -88,7 +77,8 @@ void PoseFilterConfig::validate(std::string_view prefix) const {
         {velocity_sigma_mps, "velocity_sigma_mps"},
         {ukf_beta, "ukf_beta"},
         {ukf_kappa, "ukf_kappa"}};
-    for (const auto& [value, field] : non_negative) require_non_negative(value, prefix, field);
+    for (const auto& [value, field] : non_negative)
+        detail::require_non_negative(value, prefix, field);
     const std::pair<double, std::string_view> positive[] = {
         {tilt_random_walk_rad_per_sqrt_m, "tilt_random_walk_rad_per_sqrt_m"},
         {position_jitter_m, "position_jitter_m"},
@@ -100,7 +90,7 @@ void PoseFilterConfig::validate(std::string_view prefix) const {
         {jump_yaw_sigma_rad, "jump_yaw_sigma_rad"},
         {history_s, "history_s"},
         {ukf_alpha, "ukf_alpha"}};
-    for (const auto& [value, field] : positive) require_positive(value, prefix, field);
+    for (const auto& [value, field] : positive) detail::require_positive(value, prefix, field);
 }
 
 PoseFilter::PoseFilter(PoseFilterConfig config) : config_(std::move(config)) { config_.validate(); }
