@@ -6,16 +6,32 @@ function(scantling_set_target_options target)
     target_compile_options(${target} PRIVATE -Werror)
   endif()
   scantling_apply_sanitizers(${target})
+  scantling_apply_precompiled_headers(${target})
+endfunction()
+
+# SCANTLING_PCH: the headers nearly every file includes, parsed once per target instead of once
+# per file (Eigen alone is ~2 s of front-end per file under the sanitizers; docs/benchmarks.md,
+# "Build time"). Off for a tree that must prove each file includes what it uses.
+function(scantling_apply_precompiled_headers target)
+  if(SCANTLING_PCH)
+    target_precompile_headers(${target} PRIVATE <Eigen/Core> <Eigen/Geometry> <fmt/format.h>
+      <algorithm> <cmath> <memory> <optional> <string> <string_view> <vector>)
+  endif()
 endfunction()
 
 # Sanitizers on one target (SCANTLING_SANITIZE, e.g. "address,undefined": `make test-asan`,
 # `make fuzz`; docs/fuzzing.md). A library hands the sanitizer runtime on to whatever links it
 # (tests, the CLI, an installed find_package consumer), since its objects call into it.
-# SCANTLING_FUZZ adds libFuzzer's coverage instrumentation (clang only) without its main().
+# SCANTLING_NO_SANITIZE takes checks back out of that set. SCANTLING_FUZZ adds libFuzzer's
+# coverage instrumentation (clang only) without its main().
 function(scantling_apply_sanitizers target)
   if(SCANTLING_SANITIZE)
     target_compile_options(${target} PRIVATE -fsanitize=${SCANTLING_SANITIZE}
       -fno-sanitize-recover=all -fno-omit-frame-pointer)
+    if(SCANTLING_NO_SANITIZE)
+      # After -fsanitize=, so that it wins (e.g. `make test-asan`: null,alignment,vptr).
+      target_compile_options(${target} PRIVATE -fno-sanitize=${SCANTLING_NO_SANITIZE})
+    endif()
     get_target_property(type ${target} TYPE)
     if(type STREQUAL "EXECUTABLE")
       target_link_options(${target} PRIVATE -fsanitize=${SCANTLING_SANITIZE})

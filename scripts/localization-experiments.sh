@@ -7,13 +7,14 @@
 #   scripts/localization-experiments.sh [build-dir] [work-dir] [seeds]
 # build-dir holds apps/scantling (default build), work-dir the recordings and outputs (default
 # /tmp/scantling-localization), seeds the runs of the consistency study (default 20).
-# LOCALIZATION_ONLY="rates nees" restricts the groups (rates, start, filters, sources, nees).
+# LOCALIZATION_ONLY="rates nees" restricts the groups (rates, start, filters, sources, landmarks,
+# nees).
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 build="${1:-build}"
 work="${2:-/tmp/scantling-localization}"
 seeds="${3:-20}"
-only="${LOCALIZATION_ONLY:-rates start filters sources nees}"
+only="${LOCALIZATION_ONLY:-rates start filters sources landmarks nees}"
 cli="$build/apps/scantling"
 [[ -x "$cli" ]] || { echo "localization-experiments: $cli not found: build $build first" >&2; exit 1; }
 mkdir -p "$work"
@@ -74,6 +75,10 @@ if [[ " $only " == *" sources "* ]]; then
   header "Mock-up flight, every frame registered globally (the sources' pipeline) at 0.1 Hz"
   row "FPFH + robust, motion filter, EKF" "$flight" --rate 0.1 --config "$sources_config"
   row "correlative, motion filter, EKF" "$flight" --rate 0.1 --config "$ours_global_config"
+fi
+if [[ " $only " == *" landmarks "* ]]; then
+  header "Mock-up flight, known start, hierarchical landmarks (art. B) instead of ICP"
+  for rate in 1 10; do row "landmarks $rate Hz" "$flight" --method landmarks --rate "$rate"; done
 fi
 if [[ " $only " == *" nees "* ]]; then
   header "Consistency: $seeds seeds of the short mock-up flight (10 Hz, known start)"

@@ -118,8 +118,8 @@ LocalizeMetrics measure(const LocalizeRun& run, const GroundTruth& truth) {
 }
 
 void write_events_csv(std::ostream& out, const LocalizeRun& run, const GroundTruth& truth) {
-    out << "stamp_s,kind,index,outcome,mode,gate,compartment,points,overlap,mahalanobis_sq,x,y,z,"
-           "yaw_deg,error_m,compute_ms,message\n";
+    out << "stamp_s,kind,index,outcome,mode,gate,compartment,points,overlap,mahalanobis_sq,"
+           "landmarks_seen,landmarks_matched,x,y,z,yaw_deg,error_m,compute_ms,message\n";
     std::size_t w = 0;
     auto clean = [](std::string s) {
         std::replace(s.begin(), s.end(), ',', ';');
@@ -129,7 +129,7 @@ void write_events_csv(std::ostream& out, const LocalizeRun& run, const GroundTru
     auto flush_warnings = [&](double until) {
         for (; w < run.warnings.size() && run.warnings[w].stamp_s <= until; ++w) {
             const auto& x = run.warnings[w];
-            out << fmt::format("{:.6f},warning,,,,{},,,,,,,,,,,{}\n", x.stamp_s, x.source,
+            out << fmt::format("{:.6f},warning,,,,{},,,,,,,,,,,,,{}\n", x.stamp_s, x.source,
                                clean(x.message));
         }
     };
@@ -143,10 +143,11 @@ void write_events_csv(std::ostream& out, const LocalizeRun& run, const GroundTru
                                std::atan2(x.y(), x.x()) * 180.0 / M_PI,
                                (p - truth.at(e.stamp_s).translation()).norm());
         }
-        out << fmt::format("{:.6f},frame,{},{},{},{},{},{},{:.4f},{:.3f},{},{:.2f},{}\n", e.stamp_s,
-                           e.index, loc::to_string(e.outcome), loc::to_string(e.mode), e.gate,
-                           e.compartment, e.num_points, e.overlap, e.mahalanobis_squared, pose,
-                           e.compute_ms, clean(e.reason));
+        out << fmt::format("{:.6f},frame,{},{},{},{},{},{},{:.4f},{:.3f},{},{},{},{:.2f},{}\n",
+                           e.stamp_s, e.index, loc::to_string(e.outcome), loc::to_string(e.mode),
+                           e.gate, e.compartment, e.num_points, e.overlap, e.mahalanobis_squared,
+                           e.landmarks_seen, e.landmarks_matched, pose, e.compute_ms,
+                           clean(e.reason));
     }
     flush_warnings(INFINITY);
 }

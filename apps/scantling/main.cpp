@@ -260,9 +260,9 @@ void define_localize(CLI::App& app, CommandLine& cl) {
     c.filter_opt = cmd->add_option("--filter", c.filter, "Fusion filter (default: config, ekf)")
                        ->type_name("ekf|ukf");
     c.method_opt = cmd->add_option("--method", c.method,
-                                   "Tracking registration: point-to-plane ICP or Stein-ICP "
-                                   "(default: config, icp)")
-                       ->type_name("icp|stein");
+                                   "Tracking: point-to-plane ICP, Stein-ICP, or the frame x "
+                                   "longitudinal landmarks seen (art. B; default: config, icp)")
+                       ->type_name("icp|stein|landmarks");
     cmd->add_option("--start", cl.loc.start,
                     "known: the true first pose with 5 cm / 3 deg uncertainty; unknown: a "
                     "kidnapped start, global search over every compartment (default known)")

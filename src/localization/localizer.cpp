@@ -58,10 +58,11 @@ Localizer::Localizer(std::shared_ptr<const LocalizationMap> map, LocalizerConfig
     : map_(std::move(map)),
       config_(std::move(config)),
       filter_(config_.filter),
-      attitude_(config_.attitude) {
+      attitude_(config_.attitude),
+      compartments_(map_ ? map_->structure() : nullptr) {
     if (!map_) throw InputError("localizer: no map");
     config_.validate();
-    known_compartment_ = config_.start_compartment;
+    compartments_.reset(config_.start_compartment);
 }
 
 void Localizer::warn(double stamp_s, std::string source, std::string message) {
@@ -117,7 +118,13 @@ std::optional<FusedState> Localizer::add_vio(const io::VioRecord& sample) {
         process(queue_.front());
         queue_.pop_front();
     }
-    return filter_.state();
+    const std::optional<FusedState> state = filter_.state();
+    if (state) {
+        const Eigen::Vector3d p = state->T_world_body.translation();
+        if (last_fused_position_) compartments_.move(*last_fused_position_, p);
+        last_fused_position_ = p;
+    }
+    return state;
 }
 
 void Localizer::add_depth_frame(std::size_t index, PointCloud frame_sensor,
@@ -189,7 +196,7 @@ void Localizer::process(const QueuedFrame& frame) {
     }
     last_attempt_s_ = t;
     const bool tracking_now = filter_.initialized() && !lost_ && !config_.global_every_frame;
-    event = tracking_now ? track(scan, frame, std::move(event))
+    event = tracking_now ? track(scan, finite, frame, std::move(event))
                          : relocalize(scan, frame, std::move(event));
     event.compute_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -240,10 +247,10 @@ void Localizer::accept(const AbsolutePose& pose, bool restart) {
     failed_restricted_relocalizations_ = 0;
     lost_ = false;
     dropout_s_ = 0.0;
-    if (const io::StructuralMap* s_map = map_->structure()) {
-        if (const auto c = io::compartment_at(*s_map, pose.T_world_body.translation())) {
-            known_compartment_ = *c;
-        }
+    if (restart || compartments_.current() < 0) {
+        // A new start: where the pose is; from then on, through the manholes (add_vio).
+        compartments_.locate(pose.T_world_body.translation());
+        last_fused_position_.reset();
     }
 }
 

@@ -98,6 +98,50 @@ ConfigSchema<AttitudeEstimatorConfig> attitude_schema() {
     return s;
 }
 
+ConfigSchema<perception::FrameLandmarkConfig> detector_schema() {
+    using C = perception::FrameLandmarkConfig;
+    ConfigSchema<perception::PlaneRansacConfig> planes;
+    using P = perception::PlaneRansacConfig;
+    planes.field("distance_threshold_m", &P::distance_threshold_m, "inlier band, m", kPositive)
+        .field("normal_threshold_deg", &P::normal_threshold_deg, "inlier normal agreement, deg",
+               io::Range{.min = 0.0, .max = 90.0})
+        .field("min_inliers", &P::min_inliers, "smallest plane", io::Range{.min = 3})
+        .field("max_planes", &P::max_planes, "", io::Range{.min = 1})
+        .field("iterations", &P::iterations, "hypotheses per plane", io::Range{.min = 1})
+        .field("seed", &P::seed, "");
+    ConfigSchema<C> s;
+    s.section("planes", &C::planes, planes, "plane search")
+        .field("axis_tolerance_deg", &C::axis_tolerance_deg, "frame / plating classification, deg",
+               io::Range{.min = 0.0, .max = 45.0})
+        .field("min_stiffener_height_m", &C::min_stiffener_height_m, "m", kPositive)
+        .field("max_stiffener_height_m", &C::max_stiffener_height_m, "m", kPositive)
+        .field("min_plate_inliers", &C::min_plate_inliers, "smallest plating plane",
+               io::Range{.min = 3})
+        .field("stiffener_gap_m", &C::stiffener_gap_m, "gap between two stiffeners, m", kPositive)
+        .field("min_line_length_m", &C::min_line_length_m, "seen length, m", kPositive)
+        .field("min_line_points", &C::min_line_points, "", io::Range{.min = 3})
+        .field("height_quantile", &C::height_quantile, "top edge among the heights", kUnitInterval)
+        .field("max_gap_to_frame_m", &C::max_gap_to_frame_m, "line end to the frame, m",
+               kNonNegative)
+        .field("frame_extent_margin_m", &C::frame_extent_margin_m, "m", kNonNegative);
+    return s;
+}
+
+ConfigSchema<LandmarkCorrectionConfig> landmark_schema() {
+    using C = LandmarkCorrectionConfig;
+    ConfigSchema<C> s;
+    s.section("detector", &C::detector, detector_schema(), "frames, stiffeners, intersections")
+        .field("voxel_size_m", &C::voxel_size_m, "frame voxel before detection, m", kPositive)
+        .field("association_distance_m", &C::association_distance_m, "match gate, m", kPositive)
+        .field("max_residual_m", &C::max_residual_m, "agreement of the consensus, m", kPositive)
+        .field("min_landmarks", &C::min_landmarks, "fewest agreeing matches", io::Range{.min = 1})
+        .field("position_sigma_m", &C::position_sigma_m, "per landmark, m", kPositive)
+        .field("normal_sigma_rad", &C::normal_sigma_rad, "frame normal, rad", kPositive)
+        .field("free_rotation_sigma_rad", &C::free_rotation_sigma_rad,
+               "about the frame normal, rad", kPositive);
+    return s;
+}
+
 ConfigSchema<TrackingConfig> tracking_schema() {
     using C = TrackingConfig;
     ConfigSchema<registration::IcpConfig> icp;
@@ -114,10 +158,13 @@ ConfigSchema<TrackingConfig> tracking_schema() {
         .field("seed", &S::seed, "plus the frame index");
     ConfigSchema<C> s;
     s.enum_field("method", &C::method,
-                 {{"icp", TrackingMethod::kIcp}, {"stein", TrackingMethod::kStein}},
-                 "local registration")
+                 {{"icp", TrackingMethod::kIcp},
+                  {"stein", TrackingMethod::kStein},
+                  {"landmarks", TrackingMethod::kLandmarks}},
+                 "local registration, or the frame x longitudinal landmarks seen")
         .section("icp", &C::icp, icp)
         .section("stein", &C::stein, stein)
+        .section("landmarks", &C::landmarks, landmark_schema(), "art. B landmark corrections")
         .field("correspondence_sigmas", &C::correspondence_sigmas,
                "correspondence distance: this many predicted sigma + a voxel", kPositive)
         .field("min_correspondence_distance_m", &C::min_correspondence_distance_m, "m", kPositive)
@@ -222,18 +269,28 @@ ConfigSchema<LocalizerConfig> localizer_schema() {
 }  // namespace
 
 std::string_view to_string(TrackingMethod method) {
-    return method == TrackingMethod::kIcp ? "icp" : "stein";
+    switch (method) {
+        case TrackingMethod::kIcp:
+            return "icp";
+        case TrackingMethod::kStein:
+            return "stein";
+        case TrackingMethod::kLandmarks:
+            return "landmarks";
+    }
+    return "?";
 }
 
 TrackingMethod tracking_method_from_string(std::string_view name, std::string_view field) {
     if (name == "icp") return TrackingMethod::kIcp;
     if (name == "stein") return TrackingMethod::kStein;
-    throw ConfigError(fmt::format("{} = '{}', expected icp or stein", field, name));
+    if (name == "landmarks") return TrackingMethod::kLandmarks;
+    throw ConfigError(fmt::format("{} = '{}', expected icp, stein or landmarks", field, name));
 }
 
 void TrackingConfig::validate(std::string_view prefix) const {
     icp.validate(std::string(prefix) + ".icp");
     stein.validate(std::string(prefix) + ".stein");
+    landmarks.validate(std::string(prefix) + ".landmarks");
     detail::require_positive(correspondence_sigmas, prefix, "correspondence_sigmas");
     detail::require_positive(min_correspondence_distance_m, prefix,
                              "min_correspondence_distance_m");

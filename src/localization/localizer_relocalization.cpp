@@ -59,9 +59,9 @@ std::vector<int> Localizer::regions_to_search() {
     const io::StructuralMap* structure = map_->structure();
     if (structure == nullptr || structure->compartments.empty()) return {-1};
     const bool restricted =
-        known_compartment_ >= 0 &&
+        compartments_.current() >= 0 &&
         failed_restricted_relocalizations_ < config_.relocalization.failures_before_global;
-    if (restricted) return {known_compartment_};
+    if (restricted) return {compartments_.current()};
     std::vector<int> all;
     for (const io::Compartment& c : structure->compartments) all.push_back(c.id);
     return all;

@@ -52,9 +52,10 @@ Registered register_scan(const PointCloud& scan, const MapRegion& map,
 
 }  // namespace
 
-FrameEvent Localizer::track(const PointCloud& scan, const QueuedFrame& frame, FrameEvent event) {
+FrameEvent Localizer::track(const PointCloud& scan, const PointCloud& finite,
+                            const QueuedFrame& frame, FrameEvent event) {
     event.mode = LocalizerMode::kTracking;
-    event.compartment = known_compartment_;
+    event.compartment = compartments_.current();
     const double t = frame.cloud.stamp_s;
     const std::optional<AbsolutePose> predicted = filter_.predict(t);
     const std::optional<Eigen::Matrix3d> R_imu = imu_attitude(t);
@@ -64,14 +65,18 @@ FrameEvent Localizer::track(const PointCloud& scan, const QueuedFrame& frame, Fr
         return event;
     }
     const TrackingConfig& tc = config_.tracking;
+    if (tc.method == TrackingMethod::kLandmarks) {
+        const std::optional<AbsolutePose> pose = landmark_pose(finite, frame, *predicted, event);
+        if (!pose) return event;
+        return gate_and_fuse(*pose, scan, frame, *R_imu, std::move(event));
+    }
     const double sigma =
         largest_position_sigma_m(predicted->covariance, predicted->T_world_body.translation());
     const double gate_m =
         std::clamp(tc.correspondence_sigmas * sigma + map_->config().voxel_size_m,
                    tc.min_correspondence_distance_m, tc.max_correspondence_distance_m);
     const Eigen::Isometry3d guess = predicted->T_world_body * frame.T_body_sensor;
-    const MapRegion& map = map_->whole();
-    const Registered reg = register_scan(scan, map, guess, gate_m, tc, frame.index);
+    const Registered reg = register_scan(scan, map_->whole(), guess, gate_m, tc, frame.index);
     const Eigen::Isometry3d T_world_body = reg.T_world_sensor * frame.T_body_sensor.inverse();
     event.T_world_body = T_world_body;
     if (!reg.converged) {
@@ -80,11 +85,42 @@ FrameEvent Localizer::track(const PointCloud& scan, const QueuedFrame& frame, Fr
         reject(event);
         return event;
     }
+    return gate_and_fuse({t, T_world_body, reg.covariance}, scan, frame, *R_imu, std::move(event));
+}
+
+std::optional<AbsolutePose> Localizer::landmark_pose(const PointCloud& finite,
+                                                     const QueuedFrame& frame,
+                                                     const AbsolutePose& predicted,
+                                                     FrameEvent& event) {
+    const io::StructuralMap* structure = map_->structure();
+    if (structure == nullptr) {
+        event.gate = "no_structure";
+        event.reason = "landmark tracking needs the map's metadata (frames, longitudinals)";
+        return std::nullopt;
+    }
+    const LandmarkCorrection c =
+        correct_with_landmarks(finite, predicted, frame.T_body_sensor, *structure,
+                               compartments_.current(), config_.tracking.landmarks);
+    event.landmarks_seen = c.detected.landmarks.size();
+    event.landmarks_matched = c.matches.size();
+    if (c.ok()) return c.pose;
+    event.gate = c.failure;
+    event.reason = c.reason;
+    // Nothing in view is not a failure of tracking; matches that disagree are.
+    if (c.failure == "residual") reject(event);
+    return std::nullopt;
+}
+
+FrameEvent Localizer::gate_and_fuse(const AbsolutePose& measured, const PointCloud& scan,
+                                    const QueuedFrame& frame,
+                                    const Eigen::Matrix3d& R_world_body_imu, FrameEvent event) {
+    event.T_world_body = measured.T_world_body;
+    const Eigen::Isometry3d T_world_sensor = measured.T_world_body * frame.T_body_sensor;
     event.overlap =
-        registration::overlap_ratio(transformed(scan, reg.T_world_sensor), *map.tree,
+        registration::overlap_ratio(transformed(scan, T_world_sensor), *map_->whole().tree,
                                     config_.gates.overlap.voxel_size_m, config_.parallel);
-    event.gate = common_gates(T_world_body, event.overlap, t, *R_imu, event.reason);
-    const AbsolutePose measured{t, T_world_body, reg.covariance};
+    event.gate = common_gates(measured.T_world_body, event.overlap, measured.stamp_s,
+                              R_world_body_imu, event.reason);
     if (event.gate.empty()) {
         const std::optional<Innovation> in = filter_.innovation(measured);
         event.mahalanobis_squared = in ? in->mahalanobis_squared : 0.0;

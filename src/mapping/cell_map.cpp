@@ -1,3 +1,4 @@
+#include <scantling/core/config_checks.hpp>
 #include <scantling/core/error.hpp>
 #include <scantling/mapping/cell_map.hpp>
 #include <scantling/mapping/cell_thinning.hpp>
@@ -39,11 +40,7 @@ KeyStatus compute_key(const Eigen::Vector3d& p, const CellMapConfig& c, CellKey&
     return KeyStatus::kOk;
 }
 
-void require_positive(double value, std::string_view prefix, std::string_view field) {
-    if (!(value > 0.0) || !std::isfinite(value)) {
-        throw ConfigError(fmt::format("{}.{} = {}, expected finite > 0", prefix, field, value));
-    }
-}
+using config_checks::require_positive;
 
 /// glibc malloc: 8-byte header, 16-byte granularity, 32-byte minimum chunk.
 std::size_t heap_block_bytes(std::size_t bytes) {

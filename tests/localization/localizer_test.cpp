@@ -276,5 +276,33 @@ TEST_F(LocalizerTest, MapsWithoutNormalsGetThemFacingTheFreeSide) {
     EXPECT_GT(static_cast<double>(agree) / a.size(), 0.8);
 }
 
+TEST_F(LocalizerTest, LandmarksCorrectTheVioAndFollowTheRobotThroughTheManhole) {
+    LocalizerConfig config;
+    config.tracking.method = TrackingMethod::kLandmarks;
+    const Result r = run(config, true);
+    const io::StructuralMap& structure = *map_->structure();
+    int corrections = 0, compartment_changes = 0, previous = -2;
+    for (const FrameEvent& e : r.events) {
+        if (e.outcome != FrameOutcome::kRegistered || e.mode != LocalizerMode::kTracking) continue;
+        ++corrections;
+        // Every correction was made in the compartment the robot really is in (but for the
+        // estimate's few centimetres about the manhole).
+        const Eigen::Vector3d p = truth_at(e.stamp_s).translation();
+        const auto truth = io::compartment_at(structure, p);
+        ASSERT_TRUE(truth.has_value());
+        if (std::abs(p.x() - structure.connections[0].centre.x()) > 0.1) {
+            EXPECT_EQ(e.compartment, *truth) << "frame " << e.index;
+        }
+        EXPECT_GE(e.landmarks_matched, 1u);
+        EXPECT_LT((e.T_world_body->translation() - truth_at(e.stamp_s).translation()).norm(), 0.05)
+            << "frame " << e.index;
+        if (previous != -2 && e.compartment != previous) ++compartment_changes;
+        previous = e.compartment;
+    }
+    EXPECT_GE(corrections, 10) << ::testing::PrintToString(gates(r.events));
+    EXPECT_EQ(compartment_changes, 1);  // through the manhole, once
+    EXPECT_LT(mean_error(r.fused), 0.04);
+}
+
 }  // namespace
 }  // namespace scantling::localization

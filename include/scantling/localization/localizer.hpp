@@ -7,7 +7,9 @@
 /// can predict the pose at that instant):
 /// - skipped when not due (registration_period_s), with too few returns, or without attitude;
 /// - tracking (the filter is running): ICP (point-to-plane, front faces, localisation of the
-///   map) or Stein-ICP from the filter's prediction at the capture time, with its covariance;
+///   map) or Stein-ICP from the filter's prediction at the capture time, with its covariance,
+///   or the frame × longitudinal landmarks seen matched with the map's (art. B,
+///   landmark_correction.hpp; a frame without any is skipped, not rejected);
 /// - re-localisation (at the start without a known pose, after max_rejections rejected frames,
 ///   after a VIO dropout or jump): FPFH of the frame in a gravity-aligned frame (roll and pitch
 ///   from the IMU), matched against the cached map descriptors of the compartment the robot is
@@ -20,6 +22,7 @@
 ///   (tracking only) the Mahalanobis distance to the prediction;
 /// - a passed registration updates the filter at the capture time (late, by its compute time);
 ///   a re-localisation restarts it.
+/// The compartment the robot is in changes only through a manhole (compartment_tracker.hpp).
 /// Every frame yields one FrameEvent; odometry, IMU and frame faults yield warnings.
 ///
 /// Thread-safety: not thread-safe (one per robot); the map is shared read-only. Deterministic
@@ -37,6 +40,7 @@
 #include <scantling/core/point_cloud.hpp>
 #include <scantling/io/recording.hpp>
 #include <scantling/localization/attitude_estimator.hpp>
+#include <scantling/localization/compartment_tracker.hpp>
 #include <scantling/localization/localization_map.hpp>
 #include <scantling/localization/localizer_config.hpp>
 #include <scantling/localization/pose_filter.hpp>
@@ -64,8 +68,10 @@ struct FrameEvent {
     /// The registration's body pose, when one was computed (also for rejected ones).
     std::optional<Eigen::Isometry3d> T_world_body;
     double overlap = 0.0;
-    double mahalanobis_squared = 0.0;  ///< tracking only
-    double compute_ms = 0.0;           ///< wall time of the registration (not deterministic)
+    double mahalanobis_squared = 0.0;   ///< tracking only
+    std::size_t landmarks_seen = 0;     ///< landmark tracking: frame × longitudinal detections
+    std::size_t landmarks_matched = 0;  ///< of those, matched with the map's
+    double compute_ms = 0.0;            ///< wall time of the registration (not deterministic)
 };
 
 /// A fault in the inputs that the localiser worked around.
@@ -112,7 +118,15 @@ class Localizer {
     struct Candidate;
 
     void process(const QueuedFrame& frame);
-    FrameEvent track(const PointCloud& scan, const QueuedFrame& frame, FrameEvent event);
+    FrameEvent track(const PointCloud& scan, const PointCloud& finite, const QueuedFrame& frame,
+                     FrameEvent event);
+    /// The landmark correction of a frame, or nullopt with the event's gate set (landmarks).
+    std::optional<AbsolutePose> landmark_pose(const PointCloud& finite, const QueuedFrame& frame,
+                                              const AbsolutePose& predicted, FrameEvent& event);
+    /// The gates of a tracking measurement, then the filter update (or the rejection).
+    FrameEvent gate_and_fuse(const AbsolutePose& measured, const PointCloud& scan,
+                             const QueuedFrame& frame, const Eigen::Matrix3d& R_world_body_imu,
+                             FrameEvent event);
     FrameEvent relocalize(const PointCloud& scan, const QueuedFrame& frame, FrameEvent event);
     std::vector<int> regions_to_search();
     std::vector<Candidate> relocalize_in(const PointCloud& scan_gravity,
@@ -153,7 +167,10 @@ class Localizer {
     std::optional<double> last_attempt_s_;
     std::optional<double> last_vio_stamp_s_;
     std::optional<double> last_frame_stamp_s_;
-    int known_compartment_ = -1;
+    /// The compartment the robot is in, followed through the manholes (relocalisation and
+    /// landmark association are restricted to it).
+    CompartmentTracker compartments_;
+    std::optional<Eigen::Vector3d> last_fused_position_;
     int consecutive_rejections_ = 0;
     int failed_restricted_relocalizations_ = 0;
     double dropout_s_ = 0.0;

@@ -9,6 +9,7 @@
 
 #include <scantling/localization/attitude_estimator.hpp>
 #include <scantling/localization/correlative_search.hpp>
+#include <scantling/localization/landmark_correction.hpp>
 #include <scantling/localization/localization_map.hpp>
 #include <scantling/localization/pose_filter.hpp>
 #include <scantling/registration/feature_matching.hpp>
@@ -19,7 +20,9 @@
 
 namespace scantling::localization {
 
-enum class TrackingMethod { kIcp, kStein };
+/// Local registration from the prediction: ICP, Stein-ICP, or the structural landmarks seen
+/// (art. B: web frame × longitudinal intersections, landmark_correction.hpp).
+enum class TrackingMethod { kIcp, kStein, kLandmarks };
 /// How a frame is placed in the map without a prior: correlative search (correlative_search.hpp)
 /// or FPFH descriptors with the robust solver (the sources' pipeline; fails in the mock-up).
 enum class RelocalizationMethod { kCorrelative, kFpfh };
@@ -34,6 +37,7 @@ struct TrackingConfig {
     /// tank scans, docs/results.md); the correspondence distance is set per frame (below).
     registration::IcpConfig icp;
     registration::SteinIcpConfig stein;  ///< kStein: seeded at the prediction
+    LandmarkCorrectionConfig landmarks;  ///< kLandmarks (needs the structural map)
     /// The correspondence distance: this many predicted position σ plus one voxel, clamped to
     /// [min, max], metres. A tight gate keeps the wrong bay's walls out when the estimate is good.
     double correspondence_sigmas = 3.0;
