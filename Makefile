@@ -54,6 +54,10 @@ ASAN_DIR ?= build-asan
 SANITIZE ?= address,undefined
 NO_SANITIZE ?= null,alignment,vptr
 ASAN_CXX_FLAGS ?= -O1 -g1 -DNDEBUG
+# Statistical studies over hundreds of Stein-ICP runs (7 CPU-min under the sanitizers, a third of
+# the suite's time): their code paths run under the sanitizers in the lighter Stein tests
+# (same seed, reduced 3-DoF, front faces), and the studies themselves run in `make test`.
+ASAN_SKIP_TESTS ?= SteinIcp\.(CovarianceDescribesTheError|ModeRecoversKnownPose|SymmetricRoomGivesTwo|SpreadAlongCorridor)|CliRegister\.SteinReportsParticle
 # Also set while building: gtest_discover_tests runs each test executable after linking it.
 SANITIZER_ENV = ASAN_OPTIONS=$(ASAN_OPTIONS_DEFAULT) UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
 	LSAN_OPTIONS=suppressions=$(CURDIR)/scripts/sanitizers/lsan.supp:print_suppressions=0
@@ -63,7 +67,8 @@ test-asan: deps
 	  -DSCANTLING_SANITIZE=$(SANITIZE) -DSCANTLING_NO_SANITIZE=$(NO_SANITIZE) -DSCANTLING_WERROR=OFF \
 	  $(CMAKE_FLAGS)
 	env $(SANITIZER_ENV) cmake --build $(ASAN_DIR) -j $(JOBS)
-	env $(SANITIZER_ENV) ctest --test-dir $(ASAN_DIR) --output-on-failure -j $(JOBS)
+	env $(SANITIZER_ENV) ctest --test-dir $(ASAN_DIR) --output-on-failure -j $(JOBS) \
+	  -E '$(ASAN_SKIP_TESTS)'
 
 # libFuzzer targets, one per reader (clang, ASan + UBSan), each run FUZZ_SECONDS on a seed
 # corpus built from ../shared/data and the repository's files; fails with the reproducer's path.
