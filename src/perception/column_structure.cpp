@@ -13,8 +13,12 @@
 #include <scantling/core/config_checks.hpp>
 #include <scantling/core/error.hpp>
 
+#include "detail/angles.hpp"
+
 namespace scantling::perception {
 namespace {
+
+using detail::radians;
 
 using config_checks::require;
 using config_checks::require_positive;
@@ -39,17 +43,6 @@ constexpr double kStepToleranceM = 1e-10;
 // 2–3 m puts hundreds of a plate's points in each, stray points in a plane's band a few.
 constexpr double kHeightBinM = 0.05;
 constexpr std::ptrdiff_t kMinPointsPerBin = 5;
-
-double radians(double degrees) { return degrees * std::numbers::pi / 180.0; }
-
-/// The plane with its normal towards the viewpoint (the face the camera saw).
-Plane facing(Plane plane, const Eigen::Vector3d& viewpoint) {
-    if (plane.signed_distance(viewpoint) < 0.0) {
-        plane.normal = -plane.normal;
-        plane.offset_m = -plane.offset_m;
-    }
-    return plane;
-}
 
 /// The inputs' geometry: unit `up`, the sensor, and the angle tests of the config.
 struct Setting {

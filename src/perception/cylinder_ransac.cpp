@@ -5,7 +5,6 @@
 
 #include <Eigen/Cholesky>
 #include <algorithm>
-#include <climits>
 #include <cmath>
 #include <numbers>
 
@@ -29,11 +28,6 @@ constexpr int kMaxGaussNewtonSteps = 20;
 constexpr double kStepToleranceM = 1e-10;
 // Two normals closer than ~0.5° to parallel put the centre at infinity in practice.
 constexpr double kMinNormalSin = 0.01;
-
-/// size_t settings into require_at_least without wrapping to negative.
-long long as_count(std::size_t value) {
-    return static_cast<long long>(std::min<std::size_t>(value, LLONG_MAX));
-}
 
 /// A circle in the plane perpendicular to the axis, in the basis (e1, e2).
 struct Circle {
@@ -274,7 +268,7 @@ void CylinderRansacConfig::validate(std::string_view prefix) const {
     require_positive(min_radius_m, prefix, "min_radius_m");
     require(std::isfinite(max_radius_m) && max_radius_m > min_radius_m, prefix, "max_radius_m",
             max_radius_m, fmt::format("finite > min_radius_m ({})", min_radius_m));
-    require_at_least(as_count(min_inliers), 3, prefix, "min_inliers");
+    config_checks::require_count_at_least(min_inliers, 3, prefix, "min_inliers");
     require_at_least(iterations, 1, prefix, "iterations");
 }
 

@@ -12,23 +12,16 @@
 #include <scantling/core/config_checks.hpp>
 #include <scantling/core/error.hpp>
 
+#include "detail/angles.hpp"
+
 namespace scantling::perception {
 namespace {
+
+using detail::radians;
 
 using config_checks::require;
 using config_checks::require_non_negative;
 using config_checks::require_positive;
-
-double radians(double degrees) { return degrees * std::numbers::pi / 180.0; }
-
-/// The plane with its normal towards the viewpoint (the face the camera saw).
-Plane facing(Plane plane, const Eigen::Vector3d& viewpoint) {
-    if (plane.signed_distance(viewpoint) < 0.0) {
-        plane.normal = -plane.normal;
-        plane.offset_m = -plane.offset_m;
-    }
-    return plane;
-}
 
 /// An orthonormal basis of a plate: along the ship, across it, out of the plate.
 struct PlateBasis {
@@ -232,12 +225,10 @@ void FrameLandmarkConfig::validate(std::string_view prefix) const {
         std::isfinite(max_stiffener_height_m) && max_stiffener_height_m > min_stiffener_height_m,
         prefix, "max_stiffener_height_m", max_stiffener_height_m,
         "finite > min_stiffener_height_m");
-    config_checks::require_at_least(static_cast<long long>(min_plate_inliers), 3, prefix,
-                                    "min_plate_inliers");
+    config_checks::require_count_at_least(min_plate_inliers, 3, prefix, "min_plate_inliers");
     require_positive(stiffener_gap_m, prefix, "stiffener_gap_m");
     require_positive(min_line_length_m, prefix, "min_line_length_m");
-    config_checks::require_at_least(static_cast<long long>(min_line_points), 3, prefix,
-                                    "min_line_points");
+    config_checks::require_count_at_least(min_line_points, 3, prefix, "min_line_points");
     require(height_quantile > 0.0 && height_quantile <= 1.0, prefix, "height_quantile",
             height_quantile, "in (0, 1]");
     require_non_negative(max_gap_to_frame_m, prefix, "max_gap_to_frame_m");

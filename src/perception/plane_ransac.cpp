@@ -5,7 +5,6 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
-#include <climits>
 #include <cmath>
 #include <iterator>
 #include <numbers>
@@ -31,11 +30,6 @@ constexpr double kCollinearRatio = 1e-12;
 // sin² of the angle at a sample's first point below which the triangle is too flat to
 // define a plane (repeated picks land here too).
 constexpr double kMinSampleSin2 = 1e-12;
-
-/// size_t settings into require_at_least without wrapping to negative.
-long long as_count(std::size_t value) {
-    return static_cast<long long>(std::min<std::size_t>(value, LLONG_MAX));
-}
 
 /// The plane model RANSAC works with (Plane without the inlier bookkeeping).
 struct PlaneModel {
@@ -200,9 +194,17 @@ void PlaneRansacConfig::validate(std::string_view prefix) const {
     require(std::isfinite(normal_threshold_deg) && normal_threshold_deg > 0.0 &&
                 normal_threshold_deg <= 90.0,
             prefix, "normal_threshold_deg", normal_threshold_deg, "in (0, 90]");
-    require_at_least(as_count(min_inliers), 3, prefix, "min_inliers");
-    require_at_least(as_count(max_planes), 1, prefix, "max_planes");
+    config_checks::require_count_at_least(min_inliers, 3, prefix, "min_inliers");
+    config_checks::require_count_at_least(max_planes, 1, prefix, "max_planes");
     require_at_least(iterations, 1, prefix, "iterations");
+}
+
+Plane facing(Plane plane, const Eigen::Vector3d& viewpoint) {
+    if (plane.signed_distance(viewpoint) < 0.0) {
+        plane.normal = -plane.normal;
+        plane.offset_m = -plane.offset_m;
+    }
+    return plane;
 }
 
 std::vector<Plane> segment_planes(const PointCloud& cloud, const PlaneRansacConfig& config) {

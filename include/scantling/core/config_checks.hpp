@@ -4,6 +4,7 @@
 /// setting reads the same in every module: "<prefix>.<field> = <value>, expected <what>".
 
 #include <cmath>
+#include <cstddef>
 #include <string_view>
 
 #include <fmt/format.h>
@@ -32,6 +33,14 @@ inline void require_non_negative(double value, std::string_view prefix, std::str
 /// An integer setting of at least `minimum`.
 inline void require_at_least(long long value, long long minimum, std::string_view prefix,
                              std::string_view field) {
+    if (value < minimum) {
+        throw ConfigError(fmt::format("{}.{} = {}, expected >= {}", prefix, field, value, minimum));
+    }
+}
+
+/// A count setting (std::size_t) of at least `minimum`, compared without wrapping.
+inline void require_count_at_least(std::size_t value, std::size_t minimum, std::string_view prefix,
+                                   std::string_view field) {
     if (value < minimum) {
         throw ConfigError(fmt::format("{}.{} = {}, expected >= {}", prefix, field, value, minimum));
     }

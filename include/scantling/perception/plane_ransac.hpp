@@ -45,6 +45,10 @@ struct Plane {
 /// non-finite or inconsistent cloud and ConfigError for a bad config.
 std::vector<Plane> segment_planes(const PointCloud& cloud, const PlaneRansacConfig& config = {});
 
+/// The plane with its normal (and offset) flipped, if needed, so that `viewpoint` is on its
+/// positive side: the face a camera at `viewpoint` saw.
+Plane facing(Plane plane, const Eigen::Vector3d& viewpoint);
+
 /// The least-squares plane through points (PCA; the normal is the smallest-eigenvalue
 /// eigenvector, oriented towards `towards` when given). Needs >= 3 non-collinear points:
 /// throws InputError otherwise.
