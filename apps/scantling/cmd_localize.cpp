@@ -17,6 +17,7 @@
 
 #include "scantling/commands.hpp"
 #include "scantling/interrupt.hpp"
+#include "scantling/localize_defects.hpp"
 #include "scantling/localize_report.hpp"
 
 namespace scantling::app {
@@ -26,13 +27,15 @@ namespace fs = std::filesystem;
 namespace loc = localization;
 using Clock = std::chrono::steady_clock;
 
-constexpr const char* kOutputs[] = {"trajectory.tum", "events.csv", "summary.json"};
+constexpr const char* kOutputs[] = {"trajectory.tum", "events.csv",  "summary.json",
+                                    "defects.json",   "defects.csv", "defects"};
 
 loc::LocalizerConfig resolve_config(const LocalizeOptions& o) {
     loc::LocalizerConfig c =
         o.config_path ? loc::load_localizer_config(*o.config_path) : loc::LocalizerConfig{};
     if (o.filter) c.filter.kind = loc::filter_kind_from_string(*o.filter, "--filter");
     if (o.method) c.tracking.method = loc::tracking_method_from_string(*o.method, "--method");
+    if (o.vio) c.odometry_input = loc::odometry_input_from_string(*o.vio, "--vio");
     if (o.rate_hz) {
         if (!(std::isfinite(*o.rate_hz) && *o.rate_hz >= 0)) {
             throw ConfigError(
@@ -181,7 +184,8 @@ void check_replaceable(const std::string& folder) {
 }
 
 void write_outputs(const LocalizeOptions& o, const LocalizeRun& run, const GroundTruth& truth,
-                   const std::string& summary) {
+                   const std::string& summary, const DefectSurvey& defects,
+                   const io::Recording& recording) {
     // The folder is staged and renamed into place at commit: all outputs or none.
     io::OutputTransaction outputs;
     const fs::path dir = outputs.stage_folder(o.out, check_replaceable);
@@ -198,6 +202,7 @@ void write_outputs(const LocalizeOptions& o, const LocalizeRun& run, const Groun
                               [&](std::ostream& s) { write_events_csv(s, run, truth); });
     io::write_file_atomically((dir / "summary.json").string(),
                               [&](std::ostream& s) { s << summary; });
+    write_defects(dir, defects, recording);
     outputs.commit();
 }
 
@@ -223,18 +228,22 @@ void run_localize(const LocalizeOptions& o, std::ostream& out) {
     const GroundTruth truth(recording.ground_truth());
     const auto map = build_map(o, recording, config);
     loc::Localizer localizer(map, config);
-    const LocalizeRun run =
-        localize(recording, o, localizer, truth, depth_extrinsic(recording, truth));
+    const Eigen::Isometry3d T_body_depth = depth_extrinsic(recording, truth);
+    const LocalizeRun run = localize(recording, o, localizer, truth, T_body_depth);
+    const DefectSurvey defects =
+        survey_defects(recording, run, T_body_depth, map->structure(), config.defects);
     const LocalizeMetrics metrics = measure(run, truth);
     const std::map<std::string, std::string> settings = {
         {"recording", o.recording},
         {"filter", std::string(loc::to_string(config.filter.kind))},
         {"method", std::string(loc::to_string(config.tracking.method))},
+        {"vio", std::string(loc::to_string(config.odometry_input))},
         {"start", o.start},
         {"registration_period_s", fmt::format("{}", config.registration_period_s)},
         {"latency_s", fmt::format("{}", o.latency_s)}};
-    write_outputs(o, run, truth, summary_json(metrics, run, settings));
+    write_outputs(o, run, truth, summary_json(metrics, run, settings), defects, recording);
     print_summary(out, metrics, run);
+    print_defects(out, defects);
 }
 
 }  // namespace scantling::app

@@ -114,11 +114,12 @@ void print_drift(const std::vector<Eigen::Isometry3d>& ground_truth,
 struct LocalizeOptions {
     std::string recording;  ///< simulator recording (depth/, vio.csv, imu.csv, world/)
     std::string out;        ///< output folder
-    std::optional<std::string> config_path;       ///< YAML LocalizerConfig
-    std::optional<std::string> filter;            ///< ekf | ukf (overrides the config)
-    std::optional<std::string> method;            ///< icp | stein (overrides the config)
-    std::string start = "known";                  ///< known (true first pose) | unknown (kidnapped)
-    std::optional<double> rate_hz;                ///< registration rate (0 = every frame)
+    std::optional<std::string> config_path;  ///< YAML LocalizerConfig
+    std::optional<std::string> filter;       ///< ekf | ukf (overrides the config)
+    std::optional<std::string> method;  ///< icp | stein | landmarks | column (overrides the config)
+    std::optional<std::string> vio;     ///< pose | velocity (overrides the config)
+    std::string start = "known";        ///< known (true first pose) | unknown (kidnapped)
+    std::optional<double> rate_hz;      ///< registration rate (0 = every frame)
     std::optional<std::string> map_path;          ///< default: RECORDING/world/map.ply
     std::optional<std::string> metadata_path;     ///< default: RECORDING/world/metadata.json
     std::optional<std::string> descriptor_cache;  ///< default: <map>.fpfh
@@ -133,7 +134,8 @@ struct LocalizeOptions {
 /// `scantling localize RECORDING --out DIR`: absolute localisation (localization/localizer.hpp)
 /// over a recording; writes DIR/trajectory.tum (fused, at the VIO rate), DIR/events.csv (one
 /// row per depth frame and per warning), DIR/summary.json (errors against the ground truth,
-/// counts, timings), all or none; prints the summary.
+/// counts, timings), the defects the camera saw (defects.json, defects.csv, defects/; see
+/// localize_defects.hpp), all or none; prints the summary.
 void run_localize(const LocalizeOptions& options, std::ostream& out);
 
 struct EvalOptions {

@@ -67,12 +67,12 @@ struct CommandLine {
     scantling::app::LocalizeOptions loc;
     CLI::App* localize_cmd = nullptr;
     struct {
-        std::string config, filter, method, map, metadata, cache;
+        std::string config, filter, method, vio, map, metadata, cache;
         double rate_hz = 0.0;
         std::size_t max_frames = 0;
         CLI::Option *config_opt = nullptr, *filter_opt = nullptr, *method_opt = nullptr,
-                    *map_opt = nullptr, *metadata_opt = nullptr, *cache_opt = nullptr,
-                    *rate_opt = nullptr, *max_frames_opt = nullptr;
+                    *vio_opt = nullptr, *map_opt = nullptr, *metadata_opt = nullptr,
+                    *cache_opt = nullptr, *rate_opt = nullptr, *max_frames_opt = nullptr;
     } loc_cli;
 };
 
@@ -252,17 +252,25 @@ void define_localize(CLI::App& app, CommandLine& cl) {
         ->required()
         ->type_name("");
     cmd->add_option("--out", cl.loc.out,
-                    "Output folder: trajectory.tum, events.csv, summary.json (all or none)")
+                    "Output folder: trajectory.tum, events.csv, summary.json, defects.json, "
+                    "defects.csv, defects/ (all or none)")
         ->type_name("DIR");
     c.config_opt = cmd->add_option("--config", c.config,
                                    "YAML localizer config (see --print-config for every key)")
                        ->type_name("FILE");
     c.filter_opt = cmd->add_option("--filter", c.filter, "Fusion filter (default: config, ekf)")
                        ->type_name("ekf|ukf");
-    c.method_opt = cmd->add_option("--method", c.method,
-                                   "Tracking: point-to-plane ICP, Stein-ICP, or the frame x "
-                                   "longitudinal landmarks seen (art. B; default: config, icp)")
-                       ->type_name("icp|stein|landmarks");
+    c.method_opt =
+        cmd->add_option("--method", c.method,
+                        "Tracking: point-to-plane ICP, Stein-ICP, the frame x longitudinal "
+                        "landmarks seen (art. B) or the column's 3-DoF registration "
+                        "on its wall and downcomer (art. F; default: config, icp)")
+            ->type_name("icp|stein|landmarks|column");
+    c.vio_opt = cmd->add_option("--vio", c.vio,
+                                "What the VIO gives the filter: its pose, or only its body "
+                                "velocity, integrated with the IMU's attitude (default: config, "
+                                "pose)")
+                    ->type_name("pose|velocity");
     cmd->add_option("--start", cl.loc.start,
                     "known: the true first pose with 5 cm / 3 deg uncertainty; unknown: a "
                     "kidnapped start, global search over every compartment (default known)")
@@ -301,6 +309,7 @@ void run_localize(CommandLine& cl) {
     if (c.config_opt->count() > 0) cl.loc.config_path = c.config;
     if (c.filter_opt->count() > 0) cl.loc.filter = c.filter;
     if (c.method_opt->count() > 0) cl.loc.method = c.method;
+    if (c.vio_opt->count() > 0) cl.loc.vio = c.vio;
     if (c.rate_opt->count() > 0) cl.loc.rate_hz = c.rate_hz;
     if (c.map_opt->count() > 0) cl.loc.map_path = c.map;
     if (c.metadata_opt->count() > 0) cl.loc.metadata_path = c.metadata;

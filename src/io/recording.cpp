@@ -223,6 +223,7 @@ Recording open_recording(const std::string& directory) {
     recording.depth_ = read_frame_index(directory, layout::kDepthDir, {".ply"});
     recording.images_ = read_frame_index(directory, layout::kImagesDir, {".png"});
     recording.read_visible_defects();
+    recording.read_image_camera();
     const std::string extrinsic = join(join(directory, layout::kLidarDir), layout::kExtrinsic);
     if (fs::exists(extrinsic)) recording.lidar_T_body_sensor_ = read_extrinsic(extrinsic);
     const std::string depth_extrinsic =
@@ -245,6 +246,31 @@ void Recording::read_visible_defects() {
         throw ParseError(path, FileLocation{},
                          fmt::format("{} rows but {} has {} stamps", image_visible_defects_.size(),
                                      join(images_.directory, layout::kTimes), images_.size()));
+    }
+}
+
+void Recording::read_image_camera() {
+    if (images_.directory.empty()) return;
+    const std::string intrinsics = join(images_.directory, layout::kCameraIntrinsics);
+    if (fs::exists(intrinsics)) image_intrinsics_ = read_camera_intrinsics(intrinsics);
+    const std::string extrinsic = join(images_.directory, layout::kExtrinsic);
+    if (fs::exists(extrinsic)) image_T_body_sensor_ = read_extrinsic(extrinsic);
+    const std::string path = join(images_.directory, layout::kDefectSightings);
+    if (!fs::exists(path)) return;
+    defect_sightings_ = read_defect_sightings_csv(path);
+    // A sighting must name an image and carry its stamp: the lifting looks the pose up there.
+    for (const DefectSighting& s : defect_sightings_) {
+        if (s.image >= images_.size() || s.stamp_s != images_.stamps_s[s.image]) {
+            throw ParseError(
+                path, FileLocation{},
+                fmt::format("sighting of defect {} in image {} at {} s, but {} has {} stamps{}",
+                            s.defect_id, s.image, s.stamp_s,
+                            join(images_.directory, layout::kTimes), images_.size(),
+                            s.image < images_.size()
+                                ? fmt::format(" and image {} is at {} s", s.image,
+                                              images_.stamps_s[s.image])
+                                : std::string()));
+        }
     }
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <initializer_list>
+#include <limits>
 
 #include <scantling/core/error.hpp>
 #include <scantling/io/recording.hpp>
@@ -218,6 +219,57 @@ std::vector<std::vector<int>> read_visible_defects_csv(const std::string& path) 
         }
         stamps.next(detail::parse_double(fields[1], where), path, line.number);
         rows.push_back(parse_ids(fields[2], where));
+    }
+    return rows;
+}
+
+namespace {
+
+DefectSighting parse_sighting(const std::vector<std::string_view>& fields, const LineContext& where,
+                              std::size_t previous_image) {
+    const auto fail = [&where](const std::string& what) {
+        throw ParseError(where.path, at_line(where.line.number), what);
+    };
+    const std::int64_t image = detail::parse_int(fields[0], where);
+    if (image < static_cast<std::int64_t>(previous_image)) {
+        fail(fmt::format("image index {} after {}, expected indices that never decrease", image,
+                         previous_image));
+    }
+    DefectSighting sighting;
+    sighting.image = static_cast<std::size_t>(image);
+    sighting.stamp_s = detail::parse_double(fields[1], where);
+    const std::int64_t id = detail::parse_int(fields[2], where);
+    if (id < 0 || id > std::numeric_limits<int>::max()) {
+        fail(fmt::format("defect_id {}, expected an id >= 0", id));
+    }
+    sighting.defect_id = static_cast<int>(id);
+    sighting.pixel = {detail::parse_double(fields[3], where),
+                      detail::parse_double(fields[4], where)};
+    sighting.radius_px = detail::parse_double(fields[5], where);
+    if (!(sighting.radius_px >= 0.0)) {
+        fail(fmt::format("radius_px {}, expected >= 0", sighting.radius_px));
+    }
+    return sighting;
+}
+
+}  // namespace
+
+std::vector<DefectSighting> read_defect_sightings_csv(const std::string& path) {
+    const std::string text = detail::read_whole_file(path);
+    detail::LineReader reader(text);
+    match_header(path, reader, {recording_layout::kDefectSightingsHeader});
+    std::vector<DefectSighting> rows;
+    TextLine line;
+    while (reader.next(line)) {
+        if (detail::trim(line.text).empty()) continue;
+        const std::vector<std::string_view> fields = split_commas(line.text);
+        if (fields.size() != 6) {
+            throw ParseError(
+                path, at_line(line.number),
+                fmt::format("expected 6 comma-separated values, got {}", fields.size()));
+        }
+        rows.push_back(
+            parse_sighting(fields, LineContext{path, line}, rows.empty() ? 0 : rows.back().image));
     }
     return rows;
 }

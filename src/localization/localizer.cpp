@@ -54,11 +54,27 @@ Matrix6d usable_covariance(const std::optional<Matrix6d>& covariance, const Matr
     return eig.eigenvectors() * variances.asDiagonal() * eig.eigenvectors().transpose();
 }
 
+namespace {
+
+/// The filter's config for the odometry input: the IMU's tilt (velocity input) wanders more
+/// than a VIO's (velocity_odometry.hpp).
+PoseFilterConfig odometry_filter_config(const LocalizerConfig& c) {
+    PoseFilterConfig f = c.filter;
+    if (c.odometry_input == OdometryInput::kVelocity) {
+        f.tilt_random_walk_rad_per_sqrt_m = std::max(
+            f.tilt_random_walk_rad_per_sqrt_m, c.velocity_odometry.tilt_random_walk_rad_per_sqrt_m);
+    }
+    return f;
+}
+
+}  // namespace
+
 Localizer::Localizer(std::shared_ptr<const LocalizationMap> map, LocalizerConfig config)
     : map_(std::move(map)),
       config_(std::move(config)),
-      filter_(config_.filter),
+      filter_(odometry_filter_config(config_)),
       attitude_(config_.attitude),
+      velocity_odometry_(config_.velocity_odometry),
       compartments_(map_ ? map_->structure() : nullptr) {
     if (!map_) throw InputError("localizer: no map");
     config_.validate();
@@ -90,7 +106,11 @@ void Localizer::add_imu(const io::ImuRecord& sample) {
     }
 }
 
-std::optional<FusedState> Localizer::add_vio(const io::VioRecord& sample) {
+std::optional<FusedState> Localizer::add_vio(const io::VioRecord& vio) {
+    const io::VioRecord sample =
+        config_.odometry_input == OdometryInput::kVelocity
+            ? velocity_odometry_.integrate(vio, attitude_.attitude_at(vio.stamp_s))
+            : vio;
     const OdometryStatus s = filter_.add_odometry(sample);
     switch (s) {
         case OdometryStatus::kOutOfOrder:

@@ -142,6 +142,39 @@ ConfigSchema<LandmarkCorrectionConfig> landmark_schema() {
     return s;
 }
 
+ConfigSchema<ColumnRegistrationConfig> column_schema() {
+    using C = ColumnRegistrationConfig;
+    using S = registration::SteinIcpConfig;
+    ConfigSchema<perception::ColumnStructureConfig> structure;
+    structure
+        .field("diameter_m", &perception::ColumnStructureConfig::diameter_m, "column, m", kPositive)
+        .field("diameter_tolerance_m", &perception::ColumnStructureConfig::diameter_tolerance_m,
+               "diameter check, m", kPositive);
+    ConfigSchema<S> stein;
+    stein.field("num_particles", &S::num_particles, "K", io::Range{.min = 2})
+        .field("iterations", &S::iterations, "T", io::Range{.min = 1})
+        .field("refine_iterations", &S::refine_iterations, "Langevin steps", io::Range{.min = 0})
+        .field("batch_size", &S::batch_size, "B", io::Range{.min = 1})
+        .field("noise_sigma_m", &S::noise_sigma_m, "likelihood sigma, m", kPositive)
+        .field("seed", &S::seed, "plus the frame index");
+    ConfigSchema<C> s;
+    s.section("structure", &C::structure, structure, "detector")
+        .field("detection_voxel_m", &C::detection_voxel_m, "0 = every point, m", kNonNegative)
+        .field("registration_voxel_m", &C::registration_voxel_m, "m", kPositive)
+        .field("downcomer_azimuth_deg", &C::downcomer_azimuth_deg,
+               "line of the downcomers through the axis, deg")
+        .section("stein", &C::stein, stein, "3-DoF Stein-ICP around the seed")
+        .field("max_floor_snap_m", &C::max_floor_snap_m, "z from the map's floor within, m",
+               kPositive)
+        .field("floor_z_sigma_m", &C::floor_z_sigma_m, "sigma of that z, m", kPositive)
+        .field("max_rmse_m", &C::max_rmse_m, "quality gate, m", kPositive)
+        .field("min_fitness", &C::min_fitness, "quality gate", kUnitInterval)
+        .field("min_position_sigma_m", &C::min_position_sigma_m, "floor, m", kNonNegative)
+        .field("min_yaw_sigma_deg", &C::min_yaw_sigma_deg, "floor, deg", kNonNegative)
+        .field("free_sigma", &C::free_sigma, "z, roll, pitch (m, rad)", kPositive);
+    return s;
+}
+
 ConfigSchema<TrackingConfig> tracking_schema() {
     using C = TrackingConfig;
     ConfigSchema<registration::IcpConfig> icp;
@@ -160,11 +193,14 @@ ConfigSchema<TrackingConfig> tracking_schema() {
     s.enum_field("method", &C::method,
                  {{"icp", TrackingMethod::kIcp},
                   {"stein", TrackingMethod::kStein},
-                  {"landmarks", TrackingMethod::kLandmarks}},
-                 "local registration, or the frame x longitudinal landmarks seen")
+                  {"landmarks", TrackingMethod::kLandmarks},
+                  {"column", TrackingMethod::kColumn}},
+                 "local registration, the frame x longitudinal landmarks seen, or the column's "
+                 "3-DoF registration (art. F)")
         .section("icp", &C::icp, icp)
         .section("stein", &C::stein, stein)
         .section("landmarks", &C::landmarks, landmark_schema(), "art. B landmark corrections")
+        .section("column", &C::column, column_schema(), "art. F 3-DoF column registration")
         .field("correspondence_sigmas", &C::correspondence_sigmas,
                "correspondence distance: this many predicted sigma + a voxel", kPositive)
         .field("min_correspondence_distance_m", &C::min_correspondence_distance_m, "m", kPositive)
@@ -239,6 +275,33 @@ ConfigSchema<GateConfig> gates_schema() {
     return s;
 }
 
+ConfigSchema<DefectLiftingConfig> defects_schema() {
+    using C = DefectLiftingConfig;
+    ConfigSchema<C> s;
+    s.field("max_frame_offset_s", &C::max_frame_offset_s, "image to depth frame, s", kPositive)
+        .field("min_support_radius_px", &C::min_support_radius_px, "px", kPositive)
+        .field("min_support_points", &C::min_support_points, "returns on the defect",
+               io::Range{.min = 3})
+        .field("plane_inlier_m", &C::plane_inlier_m, "m", kPositive)
+        .field("range_sigma_m", &C::range_sigma_m, "1 sigma per return, m", kPositive)
+        .field("pixel_sigma_px", &C::pixel_sigma_px, "1 sigma of the detection, px", kPositive)
+        .field("max_incidence_deg", &C::max_incidence_deg, "deg",
+               io::Range{.min = 0.0, .min_exclusive = true, .max = 90.0, .max_exclusive = true})
+        .field("local_cloud_radius_m", &C::local_cloud_radius_m, "m", kPositive);
+    return s;
+}
+
+ConfigSchema<VelocityOdometryConfig> velocity_odometry_schema() {
+    ConfigSchema<VelocityOdometryConfig> s;
+    using C = VelocityOdometryConfig;
+    s.field("max_step_s", &C::max_step_s, "longest step integrated, s", kPositive)
+        .field("max_yaw_disagreement_rad", &C::max_yaw_disagreement_rad,
+               "VIO yaw step refused when the gyro's differs by more", kPositive)
+        .field("tilt_random_walk_rad_per_sqrt_m", &C::tilt_random_walk_rad_per_sqrt_m,
+               "IMU tilt: filter tilt random walk at least this", kPositive);
+    return s;
+}
+
 ConfigSchema<LocalizerConfig> localizer_schema() {
     using C = LocalizerConfig;
     ConfigSchema<ParallelConfig> parallel;
@@ -251,6 +314,11 @@ ConfigSchema<LocalizerConfig> localizer_schema() {
         .section("tracking", &C::tracking, tracking_schema())
         .section("relocalization", &C::relocalization, relocalization_schema())
         .section("gates", &C::gates, gates_schema())
+        .section("defects", &C::defects, defects_schema())
+        .enum_field("odometry_input", &C::odometry_input,
+                    {{"pose", OdometryInput::kPose}, {"velocity", OdometryInput::kVelocity}},
+                    "the VIO's pose, or its velocity with the IMU's attitude")
+        .section("velocity_odometry", &C::velocity_odometry, velocity_odometry_schema())
         .field("registration_period_s", &C::registration_period_s,
                "shortest time between registrations, s (0 = every frame)", kNonNegative)
         .field("max_rejections", &C::max_rejections, "rejected frames before re-localising",
@@ -276,21 +344,36 @@ std::string_view to_string(TrackingMethod method) {
             return "stein";
         case TrackingMethod::kLandmarks:
             return "landmarks";
+        case TrackingMethod::kColumn:
+            return "column";
     }
     return "?";
+}
+
+std::string_view to_string(OdometryInput input) {
+    return input == OdometryInput::kVelocity ? "velocity" : "pose";
+}
+
+OdometryInput odometry_input_from_string(std::string_view name, std::string_view field) {
+    if (name == "pose") return OdometryInput::kPose;
+    if (name == "velocity") return OdometryInput::kVelocity;
+    throw ConfigError(fmt::format("{} = '{}', expected pose or velocity", field, name));
 }
 
 TrackingMethod tracking_method_from_string(std::string_view name, std::string_view field) {
     if (name == "icp") return TrackingMethod::kIcp;
     if (name == "stein") return TrackingMethod::kStein;
     if (name == "landmarks") return TrackingMethod::kLandmarks;
-    throw ConfigError(fmt::format("{} = '{}', expected icp, stein or landmarks", field, name));
+    if (name == "column") return TrackingMethod::kColumn;
+    throw ConfigError(
+        fmt::format("{} = '{}', expected icp, stein, landmarks or column", field, name));
 }
 
 void TrackingConfig::validate(std::string_view prefix) const {
     icp.validate(std::string(prefix) + ".icp");
     stein.validate(std::string(prefix) + ".stein");
     landmarks.validate(std::string(prefix) + ".landmarks");
+    column.validate(std::string(prefix) + ".column");
     detail::require_positive(correspondence_sigmas, prefix, "correspondence_sigmas");
     detail::require_positive(min_correspondence_distance_m, prefix,
                              "min_correspondence_distance_m");
@@ -338,6 +421,8 @@ void LocalizerConfig::validate(std::string_view prefix) const {
     tracking.validate(p + ".tracking");
     relocalization.validate(p + ".relocalization");
     gates.validate(p + ".gates");
+    defects.validate(p + ".defects");
+    velocity_odometry.validate(p + ".velocity_odometry");
     parallel.validate(p + ".parallel");
     detail::require_non_negative(registration_period_s, prefix, "registration_period_s");
     detail::require(max_rejections >= 1, prefix, "max_rejections", max_rejections, ">= 1");
@@ -353,6 +438,7 @@ void LocalizerConfig::set_num_threads(int num_threads) {
     map.parallel.num_threads = num_threads;
     tracking.icp.parallel.num_threads = num_threads;
     tracking.stein.parallel.num_threads = num_threads;
+    tracking.column.stein.parallel.num_threads = num_threads;
     relocalization.refine.parallel.num_threads = num_threads;
     relocalization.robust.parallel.num_threads = num_threads;
     relocalization.match.parallel.num_threads = num_threads;

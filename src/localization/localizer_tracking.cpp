@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include <scantling/core/point_cloud.hpp>
+#include <scantling/localization/column_registration.hpp>
 #include <scantling/localization/localizer.hpp>
 #include <scantling/registration/quality.hpp>
 
@@ -70,6 +71,12 @@ FrameEvent Localizer::track(const PointCloud& scan, const PointCloud& finite,
         if (!pose) return event;
         return gate_and_fuse(*pose, scan, frame, *R_imu, std::move(event));
     }
+    if (tc.method == TrackingMethod::kColumn) {
+        const std::optional<AbsolutePose> pose =
+            column_pose(finite, frame, *predicted, *R_imu, event);
+        if (!pose) return event;
+        return gate_and_fuse(*pose, scan, frame, *R_imu, std::move(event));
+    }
     const double sigma =
         largest_position_sigma_m(predicted->covariance, predicted->T_world_body.translation());
     const double gate_m =
@@ -108,6 +115,24 @@ std::optional<AbsolutePose> Localizer::landmark_pose(const PointCloud& finite,
     event.reason = c.reason;
     // Nothing in view is not a failure of tracking; matches that disagree are.
     if (c.failure == "residual") reject(event);
+    return std::nullopt;
+}
+
+std::optional<AbsolutePose> Localizer::column_pose(const PointCloud& finite,
+                                                   const QueuedFrame& frame,
+                                                   const AbsolutePose& predicted,
+                                                   const Eigen::Matrix3d& R_world_body_imu,
+                                                   FrameEvent& event) {
+    const MapRegion& map = map_->whole();
+    const ColumnRegistration c =
+        register_column(finite, frame.T_body_sensor, R_world_body_imu, predicted, map.cloud,
+                        *map.tree, config_.tracking.column, frame.index);
+    event.T_world_body = c.T_world_body;
+    if (c.ok()) return c.pose;
+    event.gate = c.failure;
+    event.reason = c.reason;
+    // The structure out of view is not a failure of tracking; a poor registration is.
+    if (c.failure == "registration") reject(event);
     return std::nullopt;
 }
 

@@ -125,22 +125,36 @@ RgbImage PinholeCamera::render(const SceneView& scene, const Eigen::Isometry3d& 
 
 std::vector<int> PinholeCamera::visible_defects(const SceneView& scene,
                                                 const Eigen::Isometry3d& T_world_body) const {
+    std::vector<int> visible;
+    for (const io::DefectSighting& s : sight_defects(scene, T_world_body))
+        visible.push_back(s.defect_id);
+    return visible;
+}
+
+std::vector<io::DefectSighting> PinholeCamera::sight_defects(
+    const SceneView& scene, const Eigen::Isometry3d& T_world_body) const {
     const Eigen::Isometry3d T_world_camera = T_world_body * config_.T_body_sensor;
     const Eigen::Isometry3d T_camera_world = T_world_camera.inverse();
     const Eigen::Vector3d eye_world = T_world_camera.translation();
     const double min_cos = std::cos(config_.max_defect_view_angle_rad);
-    std::vector<int> visible;
-    for (const Defect& defect : scene.metadata.defects) {
+    std::vector<io::DefectSighting> sightings;
+    for (const Defect& defect : scene.metadata.defects) {  // ids ascend with the list
         const Eigen::Vector3d to_eye = eye_world - defect.centre;
         const double distance_m = to_eye.norm();
         if (distance_m > config_.max_range_m || distance_m <= 0.0) continue;
         if (defect.normal.dot(to_eye) / distance_m <= min_cos) continue;
-        if (!config_.intrinsics.project(T_camera_world * defect.centre)) continue;
+        const Eigen::Vector3d centre_camera = T_camera_world * defect.centre;
+        const std::optional<Eigen::Vector2d> pixel = config_.intrinsics.project(centre_camera);
+        if (!pixel) continue;
         if (scene.caster.occluded(eye_world, defect.centre)) continue;
-        visible.push_back(defect.id);
+        sightings.push_back(
+            {.image = 0,
+             .stamp_s = 0.0,
+             .defect_id = defect.id,
+             .pixel = *pixel,
+             .radius_px = config_.intrinsics.fx * defect.radius_m / centre_camera.z()});
     }
-    std::sort(visible.begin(), visible.end());
-    return visible;
+    return sightings;
 }
 
 }  // namespace scantling::sim

@@ -13,8 +13,8 @@
 #include <scantling/io/atomic_file.hpp>
 #include <scantling/io/kitti.hpp>
 #include <scantling/io/ply.hpp>
+#include <scantling/io/png.hpp>
 #include <scantling/io/recording.hpp>
-#include <scantling/sim/png_writer.hpp>
 
 namespace scantling::sim {
 namespace fs = std::filesystem;
@@ -57,6 +57,7 @@ RecordingWriter::RecordingWriter(std::string directory, bool overwrite)
     imu_csv_ = std::string(layout::kImuHeader) + "\n";
     vio_csv_ = std::string(layout::kVioFeatureQualityHeader) + "\n";
     visible_defects_csv_ = std::string(layout::kVisibleDefectsHeader) + "\n";
+    defect_sightings_csv_ = std::string(layout::kDefectSightingsHeader) + "\n";
 }
 
 std::string RecordingWriter::path(const std::string& relative) const {
@@ -108,16 +109,28 @@ void RecordingWriter::set_depth_extrinsic(const Eigen::Isometry3d& T_body_sensor
 
 void RecordingWriter::add_image(const RgbImage& image, double stamp_s,
                                 const Eigen::Isometry3d& T_world_sensor,
-                                std::span<const int> visible_defect_ids) {
+                                std::span<const io::DefectSighting> sightings) {
     if (images_.stamps_s.empty()) create_folder(path(layout::kImagesDir));
-    visible_defects_csv_ += fmt::format("{},{},{}\n", images_.stamps_s.size(), stamp_s,
-                                        fmt::join(visible_defect_ids, ";"));
-    write_png(path(std::string(layout::kImagesDir) + "/" +
-                   layout::frame_stem(images_.stamps_s.size()) + ".png"),
-              image.width, image.height, image.pixels);
+    const std::size_t index = images_.stamps_s.size();
+    std::vector<int> ids;
+    for (const io::DefectSighting& s : sightings) {
+        ids.push_back(s.defect_id);
+        defect_sightings_csv_ += fmt::format("{},{},{},{},{},{}\n", index, stamp_s, s.defect_id,
+                                             s.pixel.x(), s.pixel.y(), s.radius_px);
+    }
+    visible_defects_csv_ += fmt::format("{},{},{}\n", index, stamp_s, fmt::join(ids, ";"));
+    io::write_png(path(std::string(layout::kImagesDir) + "/" +
+                       layout::frame_stem(images_.stamps_s.size()) + ".png"),
+                  image.width, image.height, image.pixels);
     images_.stamps_s.push_back(stamp_s);
     images_.poses.push_back(T_world_sensor);
     ++counts_.images;
+}
+
+void RecordingWriter::set_image_camera(const PinholeIntrinsics& intrinsics,
+                                       const Eigen::Isometry3d& T_body_sensor) {
+    image_intrinsics_ = intrinsics;
+    image_T_body_sensor_ = T_body_sensor;
 }
 
 void RecordingWriter::add_imu(const ImuSample& sample) {
@@ -166,8 +179,14 @@ void RecordingWriter::finish(const RecordingSummary& summary) {
     }
     write_stream(layout::kImagesDir, images_);
     if (counts_.images > 0) {
-        write_text(path(std::string(layout::kImagesDir) + "/" + layout::kVisibleDefects),
-                   visible_defects_csv_);
+        const std::string images = std::string(layout::kImagesDir) + "/";
+        write_text(path(images + layout::kVisibleDefects), visible_defects_csv_);
+        write_text(path(images + layout::kDefectSightings), defect_sightings_csv_);
+        if (image_intrinsics_) {
+            write_text(path(images + layout::kCameraIntrinsics),
+                       io::camera_intrinsics_json(*image_intrinsics_));
+            write_extrinsic(layout::kImagesDir, image_T_body_sensor_);
+        }
     }
     if (counts_.imu > 0) write_text(path(layout::kImu), imu_csv_);
     if (counts_.vio > 0) write_text(path(layout::kVio), vio_csv_);

@@ -14,7 +14,7 @@
 #include <scantling/io/kitti.hpp>
 #include <scantling/io/ply.hpp>
 #include <scantling/io/recording.hpp>
-#include <scantling/sim/png_writer.hpp>
+#include <scantling/io/png.hpp>
 #include <scantling/sim/recording_writer.hpp>
 
 namespace scantling::sim {
@@ -87,7 +87,7 @@ void RecordingWriter::add_sonar(const SonarImage& image, const Eigen::Isometry3d
         out.write(reinterpret_cast<const char*>(image.intensity.data()),
                   static_cast<std::streamsize>(image.intensity.size() * sizeof(float)));
     });
-    write_png(frame_file(folder, index, ".png"), image.num_beams, image.num_bins,
+    io::write_png(frame_file(folder, index, ".png"), image.num_beams, image.num_bins,
               sonar_pixels(image));
     sonar_.stamps_s.push_back(image.stamp_s);
     sonar_.poses.push_back(T_world_sensor);

@@ -218,8 +218,11 @@ class CameraSensor : public ScenarioSensor {
     void fire(const FireContext& c) override {
         const Eigen::Isometry3d T_world_body = c.vehicle.pose_at(c.stamp_s);
         const RgbImage image = camera_.render(c.scene, T_world_body, rng_, c.parallel);
+        if (c.writer.counts().images == 0) {
+            c.writer.set_image_camera(camera_.config().intrinsics, camera_.config().T_body_sensor);
+        }
         c.writer.add_image(image, c.stamp_s, T_world_body * camera_.config().T_body_sensor,
-                           camera_.visible_defects(c.scene, T_world_body));
+                           camera_.sight_defects(c.scene, T_world_body));
     }
 
   private:

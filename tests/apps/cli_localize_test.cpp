@@ -105,5 +105,61 @@ TEST_F(CliLocalize, PrintConfigListsEveryKey) {
     }
 }
 
+// 6 s in the first compartment looking 30° up at the deck, where the world's defect 1 (a
+// crack at (2.33, 2.58, 1.75)) is: the ToF and the RGB camera share the view.
+const char* const kDeckSurvey = R"(world: {type: ballast_tank_mockup}
+vehicle:
+  type: scripted
+  trajectory:
+    type: waypoints
+    waypoints:
+      yaw_mode: face_travel
+      max_speed_mps: 0.3
+      waypoints:
+        - {position_m: [0.6, 2.1, 0.9]}
+        - {position_m: [1.6, 2.1, 0.9]}
+sensors:
+  - {type: depth_camera, preset: l515, width: 320, rate_hz: 10,
+     T_body_sensor: {xyz: [0.05, 0.0, 0.0], rpy_deg: [-60.0, 0.0, -90.0]}}
+  - {type: camera, width: 320, rate_hz: 5,
+     T_body_sensor: {xyz: [0.05, 0.0, 0.03], rpy_deg: [-60.0, 0.0, -90.0]}}
+  - {type: imu}
+  - {type: vio}
+duration_s: 6.0
+seed: 3
+export: {map_spacing_m: 0.02}
+)";
+
+TEST_F(Cli, LocalizeMapsTheDefectsTheCameraSees) {
+    std::ofstream(path("deck.yaml")) << kDeckSurvey;
+    const CliRun sim = run("sim " + quoted(path("deck.yaml")) + " --out " + quoted(path("rec")) +
+                           " --no-progress");
+    ASSERT_EQ(sim.exit_code, 0) << sim.err;
+    const CliRun r = run("localize " + quoted(path("rec")) + " --out " + quoted(path("o")) +
+                         " --no-progress");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("right frame 1/1, right longitudinal 1/1"), std::string::npos) << r.out;
+    const auto json = nlohmann::json::parse(read_text(path("o/defects.json")));
+    ASSERT_EQ(json["defects"].size(), 1u) << json.dump(2);
+    const auto& d = json["defects"][0];
+    EXPECT_EQ(d["id"], 1);
+    EXPECT_GT(d["views"].get<int>(), 5);
+    EXPECT_LT(d["truth"]["error_m"].get<double>(), 0.05);
+    EXPECT_EQ(d["location"]["compartment_name"], "compartment_1");
+    EXPECT_EQ(d["location"]["frame"], 1);
+    EXPECT_NEAR(d["location"]["height_above_floor_m"].get<double>(), 1.75, 0.05);
+    // The covariance must cover the error (3 σ).
+    EXPECT_LT(d["truth"]["error_m"].get<double>(), 3.0 * d["largest_sigma_m"].get<double>());
+    const std::string csv = read_text(path("o/defects.csv"));
+    EXPECT_EQ(csv.rfind("id,x,y,z,largest_sigma_m,views,compartment", 0), 0u);
+    EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 2);
+    EXPECT_TRUE(fs::exists(path("o/defects/1/crop.png")));
+    EXPECT_TRUE(fs::exists(path("o/defects/1/cloud.ply")));
+    // The same folder is replaced by a second run (it holds only localize's outputs).
+    const CliRun again = run("localize " + quoted(path("rec")) + " --out " + quoted(path("o")) +
+                             " --no-progress --max-frames 5");
+    EXPECT_EQ(again.exit_code, 0) << again.err;
+}
+
 }  // namespace
 }  // namespace scantling::cli_test

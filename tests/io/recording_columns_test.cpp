@@ -95,5 +95,55 @@ TEST_F(RecordingColumnsTest, MalformedVisibleDefectsNameTheLine) {
     EXPECT_THROW(read_visible_defects_csv(write("bad.csv", "index,ids\n")), ParseError);
 }
 
+TEST_F(RecordingColumnsTest, DefectSightingsKeepPixelsPerImage) {
+    const std::string path =
+        write("sightings.csv", std::string(recording_layout::kDefectSightingsHeader) +
+                                   "\n0,0,3,10.5,20.25,4\n0,0,7,1,2,0\n2,1,3,11,21,4.5\n");
+    const std::vector<DefectSighting> rows = read_defect_sightings_csv(path);
+    ASSERT_EQ(rows.size(), 3u);
+    EXPECT_EQ(rows[1].defect_id, 7);
+    EXPECT_EQ(rows[2].image, 2u);
+    EXPECT_EQ(rows[2].stamp_s, 1.0);
+    EXPECT_EQ(rows[0].pixel, Eigen::Vector2d(10.5, 20.25));
+    EXPECT_EQ(rows[2].radius_px, 4.5);
+}
+
+TEST_F(RecordingColumnsTest, MalformedDefectSightingsNameTheLine) {
+    const std::string header = std::string(recording_layout::kDefectSightingsHeader) + "\n";
+    for (const std::string& body :
+         {std::string("1,0,1,2,3,4\n0,0,1,2,3,4\n"),  // image index goes back
+          std::string("0,0,1,2,3,4\n0,0,-1,2,3,4\n"),  // negative id
+          std::string("0,0,1,2,3,4\n0,0,1,nan,3,4\n"), std::string("0,0,1,2,3,4\n0,0,1,2,3,-1\n"),
+          std::string("0,0,1,2,3,4\n0,0,1,2,3\n")}) {
+        SCOPED_TRACE(body);
+        try {
+            read_defect_sightings_csv(write("bad.csv", header + body));
+            ADD_FAILURE() << "no error";
+        } catch (const ParseError& e) {
+            EXPECT_EQ(e.location().line, 3);
+        }
+    }
+}
+
+TEST_F(RecordingColumnsTest, CameraIntrinsicsRoundTripAndRefuseImpossibleValues) {
+    const PinholeIntrinsics k{.width = 320, .height = 240, .fx = 246.5, .fy = 259.0,
+                              .cx = 159.5, .cy = 119.5};
+    const PinholeIntrinsics back = read_camera_intrinsics(write("camera.json",
+                                                                camera_intrinsics_json(k)));
+    EXPECT_EQ(back.width, 320);
+    EXPECT_EQ(back.height, 240);
+    EXPECT_EQ(back.fx, 246.5);
+    EXPECT_EQ(back.cy, 119.5);
+    for (const std::string& json :
+         {std::string(R"({"width": 0, "height": 2, "fx": 1, "fy": 1, "cx": 0, "cy": 0})"),
+          std::string(R"({"width": 2, "height": 2, "fx": -1, "fy": 1, "cx": 0, "cy": 0})"),
+          std::string(R"({"width": 2, "height": 2, "fx": 1, "fy": 1, "cx": 0})"),
+          std::string(R"({"width": 2, "height": 2, "fx": 1, "fy": 1, "cx": 0, "cy": 0, "k1": 0})"),
+          std::string(R"({"width": 2.5, "height": 2, "fx": 1, "fy": 1, "cx": 0, "cy": 0})")}) {
+        SCOPED_TRACE(json);
+        EXPECT_THROW(read_camera_intrinsics(write("bad.json", json)), ParseError);
+    }
+}
+
 }  // namespace
 }  // namespace scantling::io

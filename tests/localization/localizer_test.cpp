@@ -132,6 +132,22 @@ TEST_F(LocalizerTest, TracksFromAKnownStartWithinCentimetres) {
     }
 }
 
+TEST_F(LocalizerTest, VioVelocityAloneTracksAndIgnoresTheVioPoseResets) {
+    // The VIO's pose resets by 1 m at 5 s (a loop closure, a restart): the pose input sees a jump
+    // and must re-localise; the velocity input never reads the pose.
+    const auto reset = [](io::VioRecord& v) {
+        if (v.stamp_s > 5.0) v.T_odom_body.translation() += Eigen::Vector3d(1.0, 0.0, 0.0);
+    };
+    LocalizerConfig config;
+    config.odometry_input = OdometryInput::kVelocity;
+    const Result velocity = run(config, true, 1000, 0.1, [](PointCloud&) {}, reset);
+    EXPECT_LT(mean_error(velocity.fused), 0.02);
+    EXPECT_TRUE(velocity.warnings.empty()) << velocity.warnings.front().message;
+    const Result pose = run(LocalizerConfig{}, true, 1000, 0.1, [](PointCloud&) {}, reset);
+    ASSERT_FALSE(pose.warnings.empty());
+    EXPECT_NE(pose.warnings.front().message.find("jump"), std::string::npos);
+}
+
 TEST_F(LocalizerTest, FindsItselfFromAnUnknownStartAndStaysThere) {
     const Result r = run(LocalizerConfig{}, false);
     ASSERT_FALSE(r.fused.empty()) << "never relocalised";

@@ -81,6 +81,21 @@ TEST(PinholeCamera, DefectInFrontIsVisibleAndHiddenBehindAnOccluder) {
     EXPECT_TRUE(camera.visible_defects(occluded.view(), Eigen::Isometry3d::Identity()).empty());
 }
 
+TEST(PinholeCamera, SightingsAreTheProjectedCentresWithTheApparentRadius) {
+    const PinholeCamera camera(noiseless_camera());
+    const TestScene scene(plate_with_defect());
+    const std::vector<io::DefectSighting> sightings =
+        camera.sight_defects(scene.view(), Eigen::Isometry3d::Identity());
+    ASSERT_EQ(sightings.size(), 1u);
+    const io::Defect& defect = scene.view().metadata.defects[0];
+    const PinholeIntrinsics& k = camera.config().intrinsics;
+    const Eigen::Vector3d c = defect.centre;  // the body is the camera here
+    EXPECT_EQ(sightings[0].defect_id, 7);
+    EXPECT_NEAR(sightings[0].pixel.x(), k.fx * c.x() / c.z() + k.cx, 1e-9);
+    EXPECT_NEAR(sightings[0].pixel.y(), k.fy * c.y() / c.z() + k.cy, 1e-9);
+    EXPECT_NEAR(sightings[0].radius_px, k.fx * defect.radius_m / c.z(), 1e-9);
+}
+
 TEST(PinholeCamera, DefectSeenFromBehindItsPlateIsNotVisible) {
     World world = plate_with_defect();
     world.metadata.defects[0].normal = Eigen::Vector3d::UnitZ();  // on the far face

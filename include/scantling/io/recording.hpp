@@ -15,6 +15,10 @@
 ///                                written before it existed)
 ///   DIR/images/NNNNNN.png, times.txt, poses_gt.txt     RGB images
 ///   DIR/images/visible_defects.csv  index,stamp_s,defect_ids (ids in view, ';'-separated)
+///   DIR/images/defect_sightings.csv index,stamp_s,defect_id,u_px,v_px,radius_px: where each
+///                                visible defect's centre is in the image (a tag detector's output)
+///   DIR/images/camera.json, T_body_sensor.txt   the RGB camera's pinhole intrinsics and mount
+///                                (both absent in recordings written before them)
 ///   DIR/rosette/NNNNNN.bin, times.txt, poses_gt.txt    rosette LiDAR frames, as lidar/
 ///   DIR/stereo/NNNNNN.ply, times.txt, poses_gt.txt     sparse stereo points, optical frame
 ///   DIR/sonar/NNNNNN.bin         multibeam ping, float32 intensity, beam-major (beam·bins+bin)
@@ -41,6 +45,7 @@
 #include <string>
 #include <vector>
 
+#include <scantling/core/pinhole_intrinsics.hpp>
 #include <scantling/core/point_cloud.hpp>
 #include <scantling/io/tum.hpp>
 
@@ -90,6 +95,11 @@ inline constexpr const char* kVioFeatureQualityHeader =
 /// in view (world/metadata.json) ascending and separated by ';' (empty field: none).
 inline constexpr const char* kVisibleDefects = "visible_defects.csv";
 inline constexpr const char* kVisibleDefectsHeader = "index,stamp_s,defect_ids";
+/// In DIR/images/: one row per defect in view per image, images in order.
+inline constexpr const char* kDefectSightings = "defect_sightings.csv";
+inline constexpr const char* kDefectSightingsHeader = "index,stamp_s,defect_id,u_px,v_px,radius_px";
+/// In DIR/images/: {"width", "height", "fx", "fy", "cx", "cy"} (core/pinhole_intrinsics.hpp).
+inline constexpr const char* kCameraIntrinsics = "camera.json";
 /// "000042": the zero-padded 6-digit stem of frame `index`.
 std::string frame_stem(std::size_t index);
 }  // namespace recording_layout
@@ -112,6 +122,17 @@ struct VioRecord {
     /// Share of textured, lit surface in the VIO camera's view the sample was simulated with,
     /// in [0, 1] (1 = good); empty for recordings without the column.
     std::optional<double> feature_quality;
+};
+
+/// One defect seen in one image: what a fiducial-tag detector returns (the simulator's visible
+/// defects stand for the tags of the sources, SPEC §7). Pixels follow core/pinhole_intrinsics.hpp
+/// (pixel centres at integers).
+struct DefectSighting {
+    std::size_t image = 0;  ///< index of the image
+    double stamp_s = 0.0;
+    int defect_id = 0;                                ///< Defect::id in world/metadata.json
+    Eigen::Vector2d pixel = Eigen::Vector2d::Zero();  ///< the defect centre, (u, v)
+    double radius_px = 0.0;  ///< apparent radius of the patch (or half-length of the crack)
 };
 
 /// One single-beam range (NaN when invalid).
@@ -194,6 +215,15 @@ class Recording {
     const std::vector<std::vector<int>>& image_visible_defects() const {
         return image_visible_defects_;
     }
+    /// Every defect sighting (images/defect_sightings.csv), in image order; empty when the
+    /// recording has no such file.
+    const std::vector<DefectSighting>& defect_sightings() const { return defect_sightings_; }
+    /// The RGB camera's intrinsics (images/camera.json) and mount (images/T_body_sensor.txt),
+    /// or nullopt when the file is absent.
+    const std::optional<PinholeIntrinsics>& image_intrinsics() const { return image_intrinsics_; }
+    const std::optional<Eigen::Isometry3d>& image_T_body_sensor() const {
+        return image_T_body_sensor_;
+    }
 
     const FrameIndex& lidar_sweeps() const { return lidar_; }
     /// Rosette LiDAR frame i in the sensor frame (KITTI .bin, or the .ply of an empty frame).
@@ -225,11 +255,17 @@ class Recording {
     void read_extra_streams(const std::string& directory);
     /// images/visible_defects.csv when present (its rows must match the images).
     void read_visible_defects();
+    /// images/defect_sightings.csv, camera.json and T_body_sensor.txt when present
+    /// (recording_images.cpp).
+    void read_image_camera();
     std::string directory_;
     FrameIndex lidar_;
     FrameIndex depth_;
     FrameIndex images_;
     std::vector<std::vector<int>> image_visible_defects_;
+    std::vector<DefectSighting> defect_sightings_;
+    std::optional<PinholeIntrinsics> image_intrinsics_;
+    std::optional<Eigen::Isometry3d> image_T_body_sensor_;
     FrameIndex rosette_;
     FrameIndex stereo_;
     FrameIndex sonar_;
@@ -269,6 +305,15 @@ std::vector<ImuRecord> read_imu_csv(const std::string& path);
 std::vector<VioRecord> read_vio_csv(const std::string& path);
 /// images/visible_defects.csv: the ids per row; ParseError unless rows are numbered 0, 1, ...
 std::vector<std::vector<int>> read_visible_defects_csv(const std::string& path);
+/// images/defect_sightings.csv: ParseError naming the line unless image indices never decrease,
+/// ids are >= 0, pixels finite and radii >= 0 (their agreement with the images' stamps is
+/// checked by open_recording).
+std::vector<DefectSighting> read_defect_sightings_csv(const std::string& path);
+/// images/camera.json: ParseError naming the field for a missing, unknown or impossible one
+/// (sizes >= 1, fx, fy > 0, finite cx, cy).
+PinholeIntrinsics read_camera_intrinsics(const std::string& path);
+/// The JSON read_camera_intrinsics reads.
+std::string camera_intrinsics_json(const PinholeIntrinsics& intrinsics);
 std::vector<RangeRecord> read_range_csv(const std::string& path);
 std::vector<UwbRecord> read_uwb_csv(const std::string& path);
 std::vector<PressureRecord> read_pressure_csv(const std::string& path);

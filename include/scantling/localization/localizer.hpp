@@ -9,7 +9,9 @@
 /// - tracking (the filter is running): ICP (point-to-plane, front faces, localisation of the
 ///   map) or Stein-ICP from the filter's prediction at the capture time, with its covariance,
 ///   or the frame × longitudinal landmarks seen matched with the map's (art. B,
-///   landmark_correction.hpp; a frame without any is skipped, not rejected);
+///   landmark_correction.hpp; a frame without any is skipped, not rejected), or the column's
+///   3-DoF registration on its detected wall and downcomer (art. F, column_registration.hpp;
+///   a frame without them in view is skipped as "not_registrable");
 /// - re-localisation (at the start without a known pose, after max_rejections rejected frames,
 ///   after a VIO dropout or jump): FPFH of the frame in a gravity-aligned frame (roll and pitch
 ///   from the IMU), matched against the cached map descriptors of the compartment the robot is
@@ -44,6 +46,7 @@
 #include <scantling/localization/localization_map.hpp>
 #include <scantling/localization/localizer_config.hpp>
 #include <scantling/localization/pose_filter.hpp>
+#include <scantling/localization/velocity_odometry.hpp>
 
 namespace scantling::localization {
 
@@ -90,7 +93,9 @@ class Localizer {
     void set_initial_pose(const AbsolutePose& pose);
     void add_imu(const io::ImuRecord& sample);
     /// Adds a VIO sample, then processes the frames it lets through. Returns the fused state at
-    /// this sample (nullopt before the first absolute pose).
+    /// this sample (nullopt before the first absolute pose). With odometry_input: velocity the
+    /// sample's pose is ignored: its body velocity is integrated with the IMU's attitude (feed
+    /// the IMU samples up to its stamp first).
     std::optional<FusedState> add_vio(const io::VioRecord& sample);
     /// Queues a depth frame (sensor frame, NaN = no return) with the camera's mounting.
     void add_depth_frame(std::size_t index, PointCloud frame_sensor,
@@ -123,6 +128,12 @@ class Localizer {
     /// The landmark correction of a frame, or nullopt with the event's gate set (landmarks).
     std::optional<AbsolutePose> landmark_pose(const PointCloud& finite, const QueuedFrame& frame,
                                               const AbsolutePose& predicted, FrameEvent& event);
+    /// The column's 3-DoF registration of a frame, or nullopt with the event's gate set
+    /// (column; a frame without the structure in view is skipped, not rejected).
+    std::optional<AbsolutePose> column_pose(const PointCloud& finite, const QueuedFrame& frame,
+                                            const AbsolutePose& predicted,
+                                            const Eigen::Matrix3d& R_world_body_imu,
+                                            FrameEvent& event);
     /// The gates of a tracking measurement, then the filter update (or the rejection).
     FrameEvent gate_and_fuse(const AbsolutePose& measured, const PointCloud& scan,
                              const QueuedFrame& frame, const Eigen::Matrix3d& R_world_body_imu,
@@ -160,6 +171,7 @@ class Localizer {
     LocalizerConfig config_;
     PoseFilter filter_;
     AttitudeEstimator attitude_;
+    VelocityOdometry velocity_odometry_;  ///< odometry_input: velocity
     std::deque<QueuedFrame> queue_;
     std::vector<FrameEvent> events_;
     std::vector<LocalizerWarning> warnings_;

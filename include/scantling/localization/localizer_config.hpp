@@ -8,10 +8,13 @@
 #include <string_view>
 
 #include <scantling/localization/attitude_estimator.hpp>
+#include <scantling/localization/column_registration.hpp>
 #include <scantling/localization/correlative_search.hpp>
+#include <scantling/localization/defect_lifting.hpp>
 #include <scantling/localization/landmark_correction.hpp>
 #include <scantling/localization/localization_map.hpp>
 #include <scantling/localization/pose_filter.hpp>
+#include <scantling/localization/velocity_odometry.hpp>
 #include <scantling/registration/feature_matching.hpp>
 #include <scantling/registration/icp.hpp>
 #include <scantling/registration/quality.hpp>
@@ -20,14 +23,22 @@
 
 namespace scantling::localization {
 
-/// Local registration from the prediction: ICP, Stein-ICP, or the structural landmarks seen
-/// (art. B: web frame × longitudinal intersections, landmark_correction.hpp).
-enum class TrackingMethod { kIcp, kStein, kLandmarks };
+/// Local registration from the prediction: ICP, Stein-ICP, the structural landmarks seen
+/// (art. B: web frame × longitudinal intersections, landmark_correction.hpp), or the column's
+/// 3-DoF registration on its detected structure (art. F, column_registration.hpp).
+enum class TrackingMethod { kIcp, kStein, kLandmarks, kColumn };
 /// How a frame is placed in the map without a prior: correlative search (correlative_search.hpp)
 /// or FPFH descriptors with the robust solver (the sources' pipeline; fails in the mock-up).
 enum class RelocalizationMethod { kCorrelative, kFpfh };
+/// What the VIO's samples give the filter: their pose, or only their body velocity, integrated
+/// with the IMU's attitude (velocity_odometry.hpp).
+enum class OdometryInput { kPose, kVelocity };
 std::string_view to_string(RelocalizationMethod method);
 std::string_view to_string(TrackingMethod method);
+std::string_view to_string(OdometryInput input);
+/// "pose" or "velocity"; ConfigError naming `field` otherwise.
+OdometryInput odometry_input_from_string(std::string_view name,
+                                         std::string_view field = "odometry_input");
 TrackingMethod tracking_method_from_string(std::string_view name,
                                            std::string_view field = "tracking.method");
 
@@ -38,6 +49,7 @@ struct TrackingConfig {
     registration::IcpConfig icp;
     registration::SteinIcpConfig stein;  ///< kStein: seeded at the prediction
     LandmarkCorrectionConfig landmarks;  ///< kLandmarks (needs the structural map)
+    ColumnRegistrationConfig column;     ///< kColumn (a distillation column's map)
     /// The correspondence distance: this many predicted position σ plus one voxel, clamped to
     /// [min, max], metres. A tight gate keeps the wrong bay's walls out when the estimate is good.
     double correspondence_sigmas = 3.0;
@@ -106,6 +118,12 @@ struct LocalizerConfig {
     TrackingConfig tracking;
     RelocalizationConfig relocalization;
     GateConfig gates;
+    /// How the camera's defect sightings are lifted into the map (`scantling localize`).
+    DefectLiftingConfig defects;
+    /// The VIO's pose (default), or its velocity alone with the IMU's attitude: for a VIO that
+    /// reports only velocity, or whose pose jumps at its resets and loop closures.
+    OdometryInput odometry_input = OdometryInput::kPose;
+    VelocityOdometryConfig velocity_odometry;
     /// Shortest time between registration attempts, seconds, >= 0; 0 = every frame. The
     /// sources registered at 0.1 Hz (art. C) to 0.5 Hz (art. E) for lack of speed.
     double registration_period_s = 0.0;

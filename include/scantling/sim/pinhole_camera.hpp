@@ -24,17 +24,15 @@
 #include <scantling/core/parallel.hpp>
 #include <scantling/core/point_cloud.hpp>
 #include <scantling/core/random.hpp>
+#include <scantling/io/png.hpp>
+#include <scantling/io/recording.hpp>
 #include <scantling/sim/camera_model.hpp>
 #include <scantling/sim/sensor_mount.hpp>
 
 namespace scantling::sim {
 
-/// An 8-bit RGB image, row-major (index v · width + u).
-struct RgbImage {
-    int width = 0;
-    int height = 0;
-    std::vector<Rgb8> pixels;
-};
+/// An 8-bit RGB image, row-major (index v · width + u): the type recordings store as PNG.
+using RgbImage = io::RgbImage;
 
 /// Defaults: the UAV3D camera (640 × 480, HFOV 66°, VFOV 49.5°).
 struct PinholeCameraConfig {
@@ -78,6 +76,11 @@ class PinholeCamera {
     /// (RayCaster::occluded). O(defects) occlusion rays.
     std::vector<int> visible_defects(const SceneView& scene,
                                      const Eigen::Isometry3d& T_world_body) const;
+    /// The visible defects (as visible_defects) with the pixel their centre projects to and
+    /// their apparent radius (fx · radius_m / depth): what a fiducial-tag detector reports, the
+    /// stand-in for the tags of the sources (SPEC §7). `image` and `stamp_s` are left 0.
+    std::vector<io::DefectSighting> sight_defects(const SceneView& scene,
+                                                  const Eigen::Isometry3d& T_world_body) const;
 
     const PinholeCameraConfig& config() const { return config_; }
 

@@ -99,10 +99,15 @@ class RecordingWriter {
     /// The depth camera's mount (optical frame), written as depth/T_body_sensor.txt by finish
     /// when there are depth frames.
     void set_depth_extrinsic(const Eigen::Isometry3d& T_body_sensor);
-    /// Writes images/NNNNNN.png; `visible_defect_ids` (PinholeCamera::visible_defects) go to
-    /// images/visible_defects.csv.
+    /// Writes images/NNNNNN.png; the sightings (PinholeCamera::sight_defects) go to
+    /// images/visible_defects.csv (their ids) and images/defect_sightings.csv (their pixels,
+    /// with this image's index and stamp).
     void add_image(const RgbImage& image, double stamp_s, const Eigen::Isometry3d& T_world_sensor,
-                   std::span<const int> visible_defect_ids);
+                   std::span<const io::DefectSighting> sightings);
+    /// The RGB camera's intrinsics and mount (optical frame), written as images/camera.json and
+    /// images/T_body_sensor.txt by finish when there are images.
+    void set_image_camera(const PinholeIntrinsics& intrinsics,
+                          const Eigen::Isometry3d& T_body_sensor);
     void add_imu(const ImuSample& sample);
     void add_vio(const VioSample& sample);
     /// Writes sonar/NNNNNN.bin (float32, beam-major), sonar/NNNNNN.png (grey, columns = beams,
@@ -161,6 +166,9 @@ class RecordingWriter {
     std::string imu_csv_;
     std::string vio_csv_;
     std::string visible_defects_csv_;
+    std::string defect_sightings_csv_;
+    std::optional<PinholeIntrinsics> image_intrinsics_;
+    Eigen::Isometry3d image_T_body_sensor_ = Eigen::Isometry3d::Identity();
     Stream sonar_;
     Stream rosette_;
     Stream stereo_;

@@ -5,6 +5,7 @@
 namespace scantling::localization::detail {
 
 using config_checks::require;
+using config_checks::require_count_at_least;
 using config_checks::require_non_negative;
 using config_checks::require_positive;
 

@@ -1,16 +1,17 @@
 #include <scantling/core/error.hpp>
 #include <scantling/io/atomic_file.hpp>
-#include <scantling/sim/png_writer.hpp>
+#include <scantling/io/png.hpp>
 
 #include <fmt/format.h>
 #include <png.h>
 
+#include <algorithm>
 #include <csetjmp>
 #include <cstring>
 #include <ostream>
 #include <vector>
 
-namespace scantling::sim {
+namespace scantling::io {
 namespace {
 
 // libpng reports errors through longjmp; the message is kept here for the FileError.
@@ -71,7 +72,7 @@ void write_png(const std::string& path, int width, int height, std::span<const R
     }
     std::vector<png_bytep> rows(static_cast<std::size_t>(height));
     for (int v = 0; v < height; ++v) rows[v] = &bytes[static_cast<std::size_t>(v) * width * 3];
-    io::AtomicFileWriter writer(path);
+    AtomicFileWriter writer(path);
     PngSink sink;
     sink.out = &writer.stream();
     if (!encode(sink, width, height, rows.data())) {
@@ -81,4 +82,43 @@ void write_png(const std::string& path, int width, int height, std::span<const R
     writer.commit();
 }
 
-}  // namespace scantling::sim
+RgbImage read_png(const std::string& path) {
+    png_image image{};
+    image.version = PNG_IMAGE_VERSION;
+    if (png_image_begin_read_from_file(&image, path.c_str()) == 0) {
+        throw FileError(path, fmt::format("not a readable PNG: {}", image.message));
+    }
+    const std::size_t pixels = std::size_t{image.width} * std::size_t{image.height};
+    if (image.width == 0 || image.height == 0 || pixels > kMaxPngPixels) {
+        png_image_free(&image);
+        throw ParseError(path, FileLocation{.byte_offset = 16, .line = {}, .column = {}},
+                         fmt::format("PNG header claims {} x {} pixels, expected 1 to {}",
+                                     image.width, image.height, kMaxPngPixels));
+    }
+    image.format = PNG_FORMAT_RGB;
+    std::vector<png_byte> bytes(PNG_IMAGE_SIZE(image));
+    if (png_image_finish_read(&image, nullptr, bytes.data(), 0, nullptr) == 0) {
+        throw FileError(path, fmt::format("corrupt PNG: {}", image.message));
+    }
+    RgbImage out{static_cast<int>(image.width), static_cast<int>(image.height), {}};
+    out.pixels.resize(pixels);
+    for (std::size_t i = 0; i < pixels; ++i) std::memcpy(out.pixels[i].data(), &bytes[3 * i], 3);
+    return out;
+}
+
+RgbImage crop(const RgbImage& image, int u0, int v0, int width, int height) {
+    const int u_begin = std::clamp(u0, 0, image.width);
+    const int v_begin = std::clamp(v0, 0, image.height);
+    const int u_end = std::clamp(u0 + std::max(width, 0), u_begin, image.width);
+    const int v_end = std::clamp(v0 + std::max(height, 0), v_begin, image.height);
+    RgbImage out{u_end - u_begin, v_end - v_begin, {}};
+    out.pixels.reserve(static_cast<std::size_t>(out.width) * static_cast<std::size_t>(out.height));
+    for (int v = v_begin; v < v_end; ++v) {
+        const auto row = image.pixels.begin() + static_cast<std::ptrdiff_t>(v) * image.width;
+        out.pixels.insert(out.pixels.end(), row + u_begin, row + u_end);
+    }
+    if (out.pixels.empty()) out.width = out.height = 0;
+    return out;
+}
+
+}  // namespace scantling::io

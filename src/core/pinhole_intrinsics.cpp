@@ -1,19 +1,28 @@
-#include <scantling/sim/camera_model.hpp>
+#include <scantling/core/config_checks.hpp>
+#include <scantling/core/pinhole_intrinsics.hpp>
 
-#include "detail/sensor_checks.hpp"
+#include <fmt/format.h>
 
 #include <cmath>
 #include <numbers>
 
-namespace scantling::sim {
+namespace scantling {
+namespace {
+
+void require_field_of_view(double value_rad, std::string_view prefix, std::string_view field) {
+    config_checks::require(value_rad > 0.0 && value_rad < std::numbers::pi, prefix, field,
+                           value_rad, fmt::format("in (0, {}) rad", std::numbers::pi));
+}
+
+}  // namespace
 
 PinholeIntrinsics PinholeIntrinsics::from_fov(int width, int height, double hfov_rad,
                                               double vfov_rad) {
     constexpr std::string_view kWhat = "pinhole";
-    detail::require(width >= 1, kWhat, "width", width, ">= 1");
-    detail::require(height >= 1, kWhat, "height", height, ">= 1");
-    detail::require_angle(kWhat, "hfov_rad", hfov_rad, std::numbers::pi);
-    detail::require_angle(kWhat, "vfov_rad", vfov_rad, std::numbers::pi);
+    config_checks::require_at_least(width, 1, kWhat, "width");
+    config_checks::require_at_least(height, 1, kWhat, "height");
+    require_field_of_view(hfov_rad, kWhat, "hfov_rad");
+    require_field_of_view(vfov_rad, kWhat, "vfov_rad");
     return PinholeIntrinsics{.width = width,
                              .height = height,
                              .fx = 0.5 * width / std::tan(0.5 * hfov_rad),
@@ -48,12 +57,12 @@ bool PinholeIntrinsics::contains(const Eigen::Vector2d& pixel) const {
 }
 
 void PinholeIntrinsics::validate(std::string_view prefix) const {
-    detail::require(width >= 1, prefix, "width", width, ">= 1");
-    detail::require(height >= 1, prefix, "height", height, ">= 1");
-    detail::require_positive(prefix, "fx", fx);
-    detail::require_positive(prefix, "fy", fy);
-    detail::require(std::isfinite(cx), prefix, "cx", cx, "finite");
-    detail::require(std::isfinite(cy), prefix, "cy", cy, "finite");
+    config_checks::require_at_least(width, 1, prefix, "width");
+    config_checks::require_at_least(height, 1, prefix, "height");
+    config_checks::require_positive(fx, prefix, "fx");
+    config_checks::require_positive(fy, prefix, "fy");
+    config_checks::require(std::isfinite(cx), prefix, "cx", cx, "finite");
+    config_checks::require(std::isfinite(cy), prefix, "cy", cy, "finite");
 }
 
-}  // namespace scantling::sim
+}  // namespace scantling
