@@ -24,7 +24,7 @@ constexpr double kPi = std::numbers::pi;
 constexpr double kRadPerDeg = kPi / 180.0;
 // The DoFs the registration measures, in the (δp, δθ) order of FusedState::covariance.
 constexpr int kMeasured[] = {0, 1, 5};
-constexpr int kFree[] = {2, 3, 4};
+constexpr int kFree[] = {2, 3, 4};  // z is measured too when the floor is seen
 
 double wrap_rad(double angle_rad) { return std::remainder(angle_rad, 2.0 * kPi); }
 
@@ -50,11 +50,33 @@ PointCloud downsampled(const PointCloud& cloud, double voxel_m) {
     return voxel_m > 0.0 ? voxel_downsample(cloud, voxel_m) : cloud;
 }
 
+/// The sensor's z from the seen floor: the map's floor under the sensor plus the height above
+/// it (nullopt without a floor in view or in the map near where the prediction puts it).
+std::optional<double> sensor_z_from_floor(const perception::ColumnStructure& structure_G,
+                                          const Eigen::Vector2d& p_world_sensor_xy,
+                                          double predicted_z_m, const PointCloud& map,
+                                          const KdTree& map_tree,
+                                          const ColumnRegistrationConfig& config) {
+    if (!structure_G.floor || !map.has_normals()) return std::nullopt;
+    const perception::Plane& floor = *structure_G.floor;
+    if (!(std::abs(floor.normal.z()) > 0.0)) return std::nullopt;
+    const double height_m =
+        std::abs(floor.signed_distance(Eigen::Vector3d::Zero()) / floor.normal.z());
+    const auto hit = map_tree.nearest(
+        Eigen::Vector3d(p_world_sensor_xy.x(), p_world_sensor_xy.y(), predicted_z_m - height_m));
+    const double cos_tolerance = std::cos(config.structure.vertical_tolerance_deg * kRadPerDeg);
+    if (!hit || hit->distance_sq_m2 > config.max_floor_snap_m * config.max_floor_snap_m ||
+        std::abs(map.normals[hit->index].z()) < cos_tolerance) {
+        return std::nullopt;
+    }
+    return map.points[hit->index].z() + height_m;
+}
+
 /// (δp, δθ) covariance at the body of the particles about the chosen pose, the measured block
-/// only, with the floors; z, roll and pitch free. Returned as the filter's left twist.
+/// only, with the floors; roll, pitch (and z without a floor) free. As the filter's left twist.
 Matrix6d measurement_covariance(const registration::SteinIcpResult& r,
                                 const Eigen::Isometry3d& T_G_body,
-                                const Eigen::Isometry3d& T_world_body,
+                                const Eigen::Isometry3d& T_world_body, bool z_from_floor,
                                 const ColumnRegistrationConfig& config) {
     Matrix6d spread = Matrix6d::Zero();
     for (const Vector6d& particle : r.particles) {
@@ -72,6 +94,7 @@ Matrix6d measurement_covariance(const registration::SteinIcpResult& r,
     C(1, 1) += config.min_position_sigma_m * config.min_position_sigma_m;
     C(5, 5) += yaw_floor_rad * yaw_floor_rad;
     for (const int i : kFree) C(i, i) = config.free_sigma * config.free_sigma;
+    if (z_from_floor) C(2, 2) = config.floor_z_sigma_m * config.floor_z_sigma_m;
     return twist_covariance(C, T_world_body.translation());
 }
 
@@ -96,6 +119,8 @@ void ColumnRegistrationConfig::validate(std::string_view prefix) const {
     const std::string stein_prefix = fmt::format("{}.stein", prefix);
     stein.validate(stein_prefix);
     require(stein.reduced_3dof, stein_prefix, "reduced_3dof", 0.0, "true (x, y, yaw only)");
+    require_positive(max_floor_snap_m, prefix, "max_floor_snap_m");
+    require_positive(floor_z_sigma_m, prefix, "floor_z_sigma_m");
     require_positive(max_rmse_m, prefix, "max_rmse_m");
     require_open_unit(min_fitness, prefix, "min_fitness");
     require_non_negative(min_position_sigma_m, prefix, "min_position_sigma_m");
@@ -141,11 +166,15 @@ ColumnRegistration register_column(const PointCloud& frame_sensor,
         out.reason = out.structure.status;
         return out;
     }
-    // z from the prediction (a legged base's from its legs, a drone's from the VIO); roll and
-    // pitch are those of G: zero.
+    // z from the floor, or from the prediction (a drifted z would add to every residual of
+    // the floor and the downcomer's lower edge); roll and pitch are those of G: zero.
+    const double predicted_z_m = (predicted.T_world_body * T_body_sensor).translation().z();
+    const std::optional<double> floor_z_m = sensor_z_from_floor(
+        out.structure, out.seed->p_world_sensor_xy, predicted_z_m, map, map_tree, config);
+    out.z_from_floor = floor_z_m.has_value();
     Vector6d guess;
-    guess << out.seed->p_world_sensor_xy,
-        (predicted.T_world_body * T_body_sensor).translation().z(), 0.0, 0.0, out.seed->yaw_rad;
+    guess << out.seed->p_world_sensor_xy, floor_z_m.value_or(predicted_z_m), 0.0, 0.0,
+        out.seed->yaw_rad;
     registration::SteinIcpConfig stein = config.stein;
     stein.seed += seed_offset;  // every frame its own particles, reproducibly
     const registration::SteinIcpResult r =
@@ -162,9 +191,11 @@ ColumnRegistration register_column(const PointCloud& frame_sensor,
                                  config.max_rmse_m, r.fitness, config.min_fitness);
         return out;
     }
-    out.pose = AbsolutePose{predicted.stamp_s, T_world_body,
-                            measurement_covariance(r, g.T_G_body, T_world_body, config)};
-    out.reason = fmt::format("{} KDE modes, rmse {:.3f} m", r.num_modes, r.rmse_m);
+    out.pose =
+        AbsolutePose{predicted.stamp_s, T_world_body,
+                     measurement_covariance(r, g.T_G_body, T_world_body, out.z_from_floor, config)};
+    out.reason = fmt::format("{} KDE modes, rmse {:.3f} m, z from the {}", r.num_modes, r.rmse_m,
+                             out.z_from_floor ? "floor" : "prediction");
     return out;
 }
 

@@ -13,8 +13,8 @@
 #include <scantling/io/atomic_file.hpp>
 #include <scantling/io/kitti.hpp>
 #include <scantling/io/ply.hpp>
-#include <scantling/io/recording.hpp>
 #include <scantling/io/png.hpp>
+#include <scantling/io/recording.hpp>
 #include <scantling/sim/recording_writer.hpp>
 
 namespace scantling::sim {
@@ -88,7 +88,7 @@ void RecordingWriter::add_sonar(const SonarImage& image, const Eigen::Isometry3d
                   static_cast<std::streamsize>(image.intensity.size() * sizeof(float)));
     });
     io::write_png(frame_file(folder, index, ".png"), image.num_beams, image.num_bins,
-              sonar_pixels(image));
+                  sonar_pixels(image));
     sonar_.stamps_s.push_back(image.stamp_s);
     sonar_.poses.push_back(T_world_sensor);
     ++counts_.sonar_pings;

@@ -135,8 +135,8 @@ TEST_F(Cli, LocalizeMapsTheDefectsTheCameraSees) {
     const CliRun sim = run("sim " + quoted(path("deck.yaml")) + " --out " + quoted(path("rec")) +
                            " --no-progress");
     ASSERT_EQ(sim.exit_code, 0) << sim.err;
-    const CliRun r = run("localize " + quoted(path("rec")) + " --out " + quoted(path("o")) +
-                         " --no-progress");
+    const CliRun r =
+        run("localize " + quoted(path("rec")) + " --out " + quoted(path("o")) + " --no-progress");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find("right frame 1/1, right longitudinal 1/1"), std::string::npos) << r.out;
     const auto json = nlohmann::json::parse(read_text(path("o/defects.json")));

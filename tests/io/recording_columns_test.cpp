@@ -111,7 +111,7 @@ TEST_F(RecordingColumnsTest, DefectSightingsKeepPixelsPerImage) {
 TEST_F(RecordingColumnsTest, MalformedDefectSightingsNameTheLine) {
     const std::string header = std::string(recording_layout::kDefectSightingsHeader) + "\n";
     for (const std::string& body :
-         {std::string("1,0,1,2,3,4\n0,0,1,2,3,4\n"),  // image index goes back
+         {std::string("1,0,1,2,3,4\n0,0,1,2,3,4\n"),   // image index goes back
           std::string("0,0,1,2,3,4\n0,0,-1,2,3,4\n"),  // negative id
           std::string("0,0,1,2,3,4\n0,0,1,nan,3,4\n"), std::string("0,0,1,2,3,4\n0,0,1,2,3,-1\n"),
           std::string("0,0,1,2,3,4\n0,0,1,2,3\n")}) {
@@ -126,10 +126,10 @@ TEST_F(RecordingColumnsTest, MalformedDefectSightingsNameTheLine) {
 }
 
 TEST_F(RecordingColumnsTest, CameraIntrinsicsRoundTripAndRefuseImpossibleValues) {
-    const PinholeIntrinsics k{.width = 320, .height = 240, .fx = 246.5, .fy = 259.0,
-                              .cx = 159.5, .cy = 119.5};
-    const PinholeIntrinsics back = read_camera_intrinsics(write("camera.json",
-                                                                camera_intrinsics_json(k)));
+    const PinholeIntrinsics k{
+        .width = 320, .height = 240, .fx = 246.5, .fy = 259.0, .cx = 159.5, .cy = 119.5};
+    const PinholeIntrinsics back =
+        read_camera_intrinsics(write("camera.json", camera_intrinsics_json(k)));
     EXPECT_EQ(back.width, 320);
     EXPECT_EQ(back.height, 240);
     EXPECT_EQ(back.fx, 246.5);

@@ -170,9 +170,6 @@ TEST_F(ColumnRegistrationSim, RegistersFramesWithTheDowncomerAndRefusesTheOthers
             Eigen::AngleAxisd(kPredictionYawOffsetRad, Eigen::Vector3d::UnitZ()));
         const ColumnRegistration c = register_column(frame, T_bs, truth.linear(), predicted,
                                                      map.cloud, *map.tree, config, i);
-        if (c.structure.floor) std::printf("DEBUG frame %zu floor n (%.3f %.3f %.3f) off %.3f; map normals %zu\n", i, c.structure.floor->normal.x(), c.structure.floor->normal.y(), c.structure.floor->normal.z(), c.structure.floor->offset_m, map.cloud.normals.size());
-        if (c.seed) { const Eigen::Vector3d q(c.seed->p_world_sensor_xy.x(), c.seed->p_world_sensor_xy.y(), (predicted.T_world_body * T_bs).translation().z() - 0.501);
-          const auto h = map.tree->nearest(q); std::printf("DEBUG q (%.3f %.3f %.3f) hit (%.3f %.3f %.3f) n (%.3f %.3f %.3f) d2 %.4f\n", q.x(), q.y(), q.z(), map.cloud.points[h->index].x(), map.cloud.points[h->index].y(), map.cloud.points[h->index].z(), map.cloud.normals[h->index].x(), map.cloud.normals[h->index].y(), map.cloud.normals[h->index].z(), h->distance_sq_m2); }
         if (c.failure == "not_registrable") {
             ++refused;
             EXPECT_FALSE(c.pose.has_value());

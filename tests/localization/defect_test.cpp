@@ -41,8 +41,8 @@ struct WallScene {
     io::DefectSighting sighting_of(const Eigen::Vector3d& centre_world, double radius_px) const {
         const auto pixel = K.project(T_world_camera.inverse() * centre_world);
         EXPECT_TRUE(pixel.has_value());
-        return {.image = 4, .stamp_s = 2.0, .defect_id = 7, .pixel = *pixel,
-                .radius_px = radius_px};
+        return {
+            .image = 4, .stamp_s = 2.0, .defect_id = 7, .pixel = *pixel, .radius_px = radius_px};
     }
     LiftingView view(const Matrix6d& body_covariance = Matrix6d::Zero()) const {
         return {K, T_world_camera, T_world_camera.translation(), body_covariance};
@@ -52,8 +52,8 @@ struct WallScene {
 TEST(DefectLifting, LiftsTheCentreOntoTheWallThroughAKnownPose) {
     const WallScene scene;
     const Eigen::Vector3d centre(3.0, 1.3, 0.8);
-    const LiftResult r = lift_defect(scene.sighting_of(centre, 6.0), scene.view(),
-                                     scene.wall(0.005, 1));
+    const LiftResult r =
+        lift_defect(scene.sighting_of(centre, 6.0), scene.view(), scene.wall(0.005, 1));
     ASSERT_TRUE(r.observation) << r.reason;
     const DefectObservation& o = *r.observation;
     EXPECT_LT((o.position_world - centre).norm(), 0.003);
@@ -91,8 +91,8 @@ TEST(DefectLifting, PoseCovarianceIsCarriedToThePoint) {
     const WallScene scene;
     Matrix6d P = Matrix6d::Zero();
     P(5, 5) = std::pow(1.0 * kDeg, 2);  // 1° of yaw about the body
-    const LiftResult r = lift_defect(scene.sighting_of({3.0, 1.0, 1.0}, 6.0), scene.view(P),
-                                     scene.wall(0.0, 1));
+    const LiftResult r =
+        lift_defect(scene.sighting_of({3.0, 1.0, 1.0}, 6.0), scene.view(P), scene.wall(0.0, 1));
     ASSERT_TRUE(r.observation) << r.reason;
     // 3 m ahead, a yaw error of 1° moves the point 5.2 cm sideways (y), nothing along x or z.
     EXPECT_NEAR(std::sqrt(r.observation->pose_covariance(1, 1)), 3.0 * kDeg, 1e-4);
@@ -139,8 +139,8 @@ TEST(DefectMap, MergesViewsByInformationAndDropsTheOneThatDisagrees) {
     DefectMap map;
     map.add(view_at({1.00, 2.0, 0.5}, 0.01, 0.01, 1.0));
     map.add(view_at({1.02, 2.0, 0.5}, 0.01, 0.01, 2.0));
-    map.add(view_at({1.01, 2.0, 0.5}, 0.005, 0.01, 3.0));   // the best view
-    map.add(view_at({1.40, 2.0, 0.5}, 0.01, 0.01, 4.0));    // a stiffener in front
+    map.add(view_at({1.01, 2.0, 0.5}, 0.005, 0.01, 3.0));  // the best view
+    map.add(view_at({1.40, 2.0, 0.5}, 0.01, 0.01, 4.0));   // a stiffener in front
     const std::vector<MappedDefect> defects = map.defects();
     ASSERT_EQ(defects.size(), 1u);
     const MappedDefect& d = defects.front();

@@ -140,10 +140,12 @@ TEST_F(LocalizerTest, VioVelocityAloneTracksAndIgnoresTheVioPoseResets) {
     };
     LocalizerConfig config;
     config.odometry_input = OdometryInput::kVelocity;
-    const Result velocity = run(config, true, 1000, 0.1, [](PointCloud&) {}, reset);
+    const Result velocity = run(
+        config, true, 1000, 0.1, [](PointCloud&) {}, reset);
     EXPECT_LT(mean_error(velocity.fused), 0.02);
     EXPECT_TRUE(velocity.warnings.empty()) << velocity.warnings.front().message;
-    const Result pose = run(LocalizerConfig{}, true, 1000, 0.1, [](PointCloud&) {}, reset);
+    const Result pose = run(
+        LocalizerConfig{}, true, 1000, 0.1, [](PointCloud&) {}, reset);
     ASSERT_FALSE(pose.warnings.empty());
     EXPECT_NE(pose.warnings.front().message.find("jump"), std::string::npos);
 }
