@@ -6,6 +6,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include <scantling/core/error.hpp>
 #include <scantling/io/atomic_file.hpp>
 #include <scantling/io/cloud_io.hpp>
 #include <scantling/io/png.hpp>
@@ -149,7 +150,13 @@ namespace {
 
 nlohmann::ordered_json vector_json(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 
-nlohmann::ordered_json defect_json(const SurveyedDefect& s) {
+/// What was written for one defect beside the JSON.
+struct DefectFiles {
+    bool crop = false, cloud = false;
+    std::string crop_error;  ///< why there is no crop ("" when there is one or nothing to crop)
+};
+
+nlohmann::ordered_json defect_json(const SurveyedDefect& s, const DefectFiles& files) {
     const loc::MappedDefect& d = s.mapped;
     const loc::SurveyLocation& l = s.location;
     nlohmann::ordered_json j;
@@ -176,8 +183,12 @@ nlohmann::ordered_json defect_json(const SurveyedDefect& s) {
                       {"stamp_s", d.best_view.stamp_s},
                       {"pixel", {d.best_view.pixel.x(), d.best_view.pixel.y()}},
                       {"range_m", d.best_view.range_m}};
-    j["crop"] = fmt::format("defects/{}/crop.png", d.defect_id);
-    j["cloud"] = fmt::format("defects/{}/cloud.ply", d.defect_id);
+    j["crop"] = files.crop ? nlohmann::ordered_json(fmt::format("defects/{}/crop.png", d.defect_id))
+                           : nlohmann::ordered_json(nullptr);
+    if (!files.crop_error.empty()) j["crop_error"] = files.crop_error;
+    j["cloud"] = files.cloud
+                     ? nlohmann::ordered_json(fmt::format("defects/{}/cloud.ply", d.defect_id))
+                     : nlohmann::ordered_json(nullptr);
     if (s.error_m) {
         j["truth"] = {{"error_m", *s.error_m},
                       {"frame", s.true_location->frame},
@@ -188,14 +199,16 @@ nlohmann::ordered_json defect_json(const SurveyedDefect& s) {
     return j;
 }
 
-std::string defects_json(const DefectSurvey& survey) {
+std::string defects_json(const DefectSurvey& survey, const std::vector<DefectFiles>& files) {
     nlohmann::ordered_json j;
     j["sightings"] = survey.sightings;
     j["lifted"] = survey.lifted;
     j["not_lifted"] = survey.not_lifted;
     if (!survey.note.empty()) j["note"] = survey.note;
     j["defects"] = nlohmann::ordered_json::array();
-    for (const SurveyedDefect& s : survey.defects) j["defects"].push_back(defect_json(s));
+    for (std::size_t i = 0; i < survey.defects.size(); ++i) {
+        j["defects"].push_back(defect_json(survey.defects[i], files[i]));
+    }
     return j.dump(2) + "\n";
 }
 
@@ -218,33 +231,45 @@ void write_defects_csv(std::ostream& out, const DefectSurvey& survey) {
     }
 }
 
-/// The best view's image around the defect: 2.5 radii each side, at least 32 px.
+/// The best view's image around the defect: 2.5 radii each side, at least 32 px. An unreadable
+/// image costs the crop, not the survey (the error goes into defects.json).
 void write_crop(const fs::path& path, const loc::DefectObservation& view,
-                const io::Recording& recording) {
-    const io::RgbImage image = io::read_png(recording.image_path(view.image));
+                const io::Recording& recording, DefectFiles& files) {
+    io::RgbImage image;
+    try {
+        image = io::read_png(recording.image_path(view.image));
+    } catch (const Error& e) {
+        files.crop_error = e.what();
+        return;
+    }
     const int half = static_cast<int>(std::ceil(std::max(2.5 * view.radius_px, 16.0)));
     const io::RgbImage cut =
         io::crop(image, static_cast<int>(std::lround(view.pixel.x())) - half,
                  static_cast<int>(std::lround(view.pixel.y())) - half, 2 * half + 1, 2 * half + 1);
-    if (cut.width > 0) io::write_png(path.string(), cut);
+    if (cut.width == 0) return;
+    io::write_png(path.string(), cut);
+    files.crop = true;
 }
 
 }  // namespace
 
 void write_defects(const fs::path& dir, const DefectSurvey& survey,
                    const io::Recording& recording) {
-    io::write_file_atomically((dir / "defects.json").string(),
-                              [&](std::ostream& s) { s << defects_json(survey); });
-    io::write_file_atomically((dir / "defects.csv").string(),
-                              [&](std::ostream& s) { write_defects_csv(s, survey); });
-    for (const SurveyedDefect& s : survey.defects) {
-        const fs::path folder = dir / "defects" / std::to_string(s.mapped.defect_id);
+    std::vector<DefectFiles> files(survey.defects.size());
+    for (std::size_t i = 0; i < survey.defects.size(); ++i) {
+        const loc::MappedDefect& d = survey.defects[i].mapped;
+        const fs::path folder = dir / "defects" / std::to_string(d.defect_id);
         fs::create_directories(folder);
-        write_crop(folder / "crop.png", s.mapped.best_view, recording);
-        if (!s.mapped.best_view.local_cloud_world.empty()) {
-            io::write_cloud((folder / "cloud.ply").string(), s.mapped.best_view.local_cloud_world);
+        write_crop(folder / "crop.png", d.best_view, recording, files[i]);
+        if (!d.best_view.local_cloud_world.empty()) {
+            io::write_cloud((folder / "cloud.ply").string(), d.best_view.local_cloud_world);
+            files[i].cloud = true;
         }
     }
+    io::write_file_atomically((dir / "defects.json").string(),
+                              [&](std::ostream& s) { s << defects_json(survey, files); });
+    io::write_file_atomically((dir / "defects.csv").string(),
+                              [&](std::ostream& s) { write_defects_csv(s, survey); });
 }
 
 void print_defects(std::ostream& out, const DefectSurvey& survey) {

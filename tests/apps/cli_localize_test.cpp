@@ -1,4 +1,6 @@
 // `scantling localize`: end to end on a short simulated flight in the mock-up, plus bad input.
+#include <fmt/format.h>
+
 #include <fstream>
 #include <nlohmann/json.hpp>
 
@@ -155,10 +157,18 @@ TEST_F(Cli, LocalizeMapsTheDefectsTheCameraSees) {
     EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 2);
     EXPECT_TRUE(fs::exists(path("o/defects/1/crop.png")));
     EXPECT_TRUE(fs::exists(path("o/defects/1/cloud.ply")));
-    // The same folder is replaced by a second run (it holds only localize's outputs).
-    const CliRun again = run("localize " + quoted(path("rec")) + " --out " + quoted(path("o")) +
-                             " --no-progress --max-frames 5");
-    EXPECT_EQ(again.exit_code, 0) << again.err;
+    // A corrupt image costs its crop, not the survey; the same folder is replaced by a second
+    // run (it holds only localize's outputs).
+    const int best_image = d["best_view"]["image"].get<int>();
+    std::ofstream(path("rec/images/" + fmt::format("{:06d}.png", best_image))) << "not a png";
+    const CliRun again =
+        run("localize " + quoted(path("rec")) + " --out " + quoted(path("o")) + " --no-progress");
+    ASSERT_EQ(again.exit_code, 0) << again.err;
+    const auto again_json = nlohmann::json::parse(read_text(path("o/defects.json")));
+    EXPECT_TRUE(again_json["defects"][0]["crop"].is_null());
+    EXPECT_NE(again_json["defects"][0]["crop_error"].get<std::string>().find("PNG"),
+              std::string::npos);
+    EXPECT_FALSE(fs::exists(path("o/defects/1/crop.png")));
 }
 
 }  // namespace
