@@ -78,3 +78,15 @@ function(scantling_add_test module)
     gtest_discover_tests(${target} DISCOVERY_TIMEOUT 60 PROPERTIES LABELS ${module})
   endif()
 endfunction()
+
+# scantling_add_recording_fixture(<test-name> SCENARIO <file> OUT <dir> FIXTURE <name>
+#                                 LABEL <label>): a ctest that records SCENARIO with the CLI into
+# OUT before the tests that require FIXTURE (a module test may not include the simulator:
+# tests/arch). The recording is rewritten on every run (--force).
+function(scantling_add_recording_fixture name)
+  cmake_parse_arguments(ARG "" "SCENARIO;OUT;FIXTURE;LABEL" "" ${ARGN})
+  add_test(NAME ${name}
+    COMMAND scantling sim ${ARG_SCENARIO} --out ${ARG_OUT} --force --no-progress)
+  set_tests_properties(${name} PROPERTIES FIXTURES_SETUP ${ARG_FIXTURE} LABELS ${ARG_LABEL})
+endfunction()
+

@@ -41,8 +41,9 @@ struct Cylinder {
     double radius_m = 0.0;
     std::vector<std::size_t> inliers;  ///< indices into the input cloud, sorted
     double rms_m = 0.0;                ///< RMS radial residual of the inliers after the refit
-    /// 3×3 covariance of (centre along two axes perpendicular to `axis`, radius) from the refit's
-    /// Gauss–Newton normal matrix and the residual variance, m².
+    /// 3×3 covariance of (centre · e1, centre · e2, radius) from the refit's Gauss–Newton normal
+    /// matrix and the residual variance, m², with e1 = axis.unitOrthogonal() (Eigen; `axis` above)
+    /// and e2 = axis × e1: to have it in the cloud's frame, J = [e1 e2] for the centre block.
     Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
 };
 
