@@ -57,7 +57,10 @@ ASAN_CXX_FLAGS ?= -O1 -g1 -DNDEBUG
 # Statistical studies over hundreds of Stein-ICP runs (7 CPU-min under the sanitizers, a third of
 # the suite's time): their code paths run under the sanitizers in the lighter Stein tests
 # (same seed, reduced 3-DoF, front faces), and the studies themselves run in `make test`.
-ASAN_SKIP_TESTS ?= SteinIcp\.(CovarianceDescribesTheError|ModeRecoversKnownPose|SymmetricRoomGivesTwo|SpreadAlongCorridor)|CliRegister\.SteinReportsParticle
+# Likewise two whole-recording runs of the localiser (the column's 3-DoF tracking over 80 s and
+# the VIO-velocity input over the mock-up flight, twice): their code runs under the sanitizers
+# in ColumnRegistrationSim.RegistersFrames* and the VelocityOdometry unit tests.
+ASAN_SKIP_TESTS ?= SteinIcp\.(CovarianceDescribesTheError|ModeRecoversKnownPose|SymmetricRoomGivesTwo|SpreadAlongCorridor)|CliRegister\.SteinReportsParticle|ColumnRegistrationSim\.LocalizerWithColumnTracking|LocalizerTest\.VioVelocityAlone
 # Also set while building: gtest_discover_tests runs each test executable after linking it.
 SANITIZER_ENV = ASAN_OPTIONS=$(ASAN_OPTIONS_DEFAULT) UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
 	LSAN_OPTIONS=suppressions=$(CURDIR)/scripts/sanitizers/lsan.supp:print_suppressions=0
