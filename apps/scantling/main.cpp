@@ -268,8 +268,8 @@ void define_localize(CLI::App& app, CommandLine& cl) {
             ->type_name("icp|stein|landmarks|column");
     c.vio_opt = cmd->add_option("--vio", c.vio,
                                 "What the VIO gives the filter: its pose, or only its body "
-                                "velocity, integrated with the IMU's attitude (default: config, "
-                                "pose)")
+                                "velocity, integrated with the IMU's roll and pitch and the VIO's "
+                                "yaw steps (default: config, pose)")
                     ->type_name("pose|velocity");
     cmd->add_option("--start", cl.loc.start,
                     "known: the true first pose with 5 cm / 3 deg uncertainty; unknown: a "

@@ -317,7 +317,7 @@ ConfigSchema<LocalizerConfig> localizer_schema() {
         .section("defects", &C::defects, defects_schema())
         .enum_field("odometry_input", &C::odometry_input,
                     {{"pose", OdometryInput::kPose}, {"velocity", OdometryInput::kVelocity}},
-                    "the VIO's pose, or its velocity with the IMU's attitude")
+                    "the VIO's pose, or its velocity with the IMU's tilt")
         .section("velocity_odometry", &C::velocity_odometry, velocity_odometry_schema())
         .field("registration_period_s", &C::registration_period_s,
                "shortest time between registrations, s (0 = every frame)", kNonNegative)

@@ -94,8 +94,9 @@ class Localizer {
     void add_imu(const io::ImuRecord& sample);
     /// Adds a VIO sample, then processes the frames it lets through. Returns the fused state at
     /// this sample (nullopt before the first absolute pose). With odometry_input: velocity the
-    /// sample's pose is ignored: its body velocity is integrated with the IMU's attitude (feed
-    /// the IMU samples up to its stamp first).
+    /// sample's position is ignored: its body velocity is integrated with the IMU's roll and
+    /// pitch and its own yaw steps (velocity_odometry.hpp; feed the IMU samples up to its
+    /// stamp first).
     std::optional<FusedState> add_vio(const io::VioRecord& sample);
     /// Queues a depth frame (sensor frame, NaN = no return) with the camera's mounting.
     void add_depth_frame(std::size_t index, PointCloud frame_sensor,

@@ -31,7 +31,7 @@ enum class TrackingMethod { kIcp, kStein, kLandmarks, kColumn };
 /// or FPFH descriptors with the robust solver (the sources' pipeline; fails in the mock-up).
 enum class RelocalizationMethod { kCorrelative, kFpfh };
 /// What the VIO's samples give the filter: their pose, or only their body velocity, integrated
-/// with the IMU's attitude (velocity_odometry.hpp).
+/// with the IMU's roll and pitch and the VIO's yaw steps (velocity_odometry.hpp).
 enum class OdometryInput { kPose, kVelocity };
 std::string_view to_string(RelocalizationMethod method);
 std::string_view to_string(TrackingMethod method);
@@ -120,8 +120,8 @@ struct LocalizerConfig {
     GateConfig gates;
     /// How the camera's defect sightings are lifted into the map (`scantling localize`).
     DefectLiftingConfig defects;
-    /// The VIO's pose (default), or its velocity alone with the IMU's attitude: for a VIO that
-    /// reports only velocity, or whose pose jumps at its resets and loop closures.
+    /// The VIO's pose (default), or its velocity (and yaw steps) with the IMU's roll and pitch:
+    /// for a VIO that reports only velocity, or whose position jumps at its resets.
     OdometryInput odometry_input = OdometryInput::kPose;
     VelocityOdometryConfig velocity_odometry;
     /// Shortest time between registration attempts, seconds, >= 0; 0 = every frame. The
