@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <charconv>
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -258,9 +259,10 @@ void Recording::read_image_camera() {
     const std::string path = join(images_.directory, layout::kDefectSightings);
     if (!fs::exists(path)) return;
     defect_sightings_ = read_defect_sightings_csv(path);
-    // A sighting must name an image and carry its stamp: the lifting looks the pose up there.
+    // A sighting must name an image and carry its stamp (to the microsecond: writers print
+    // stamps with different digits): the lifting looks the pose up there.
     for (const DefectSighting& s : defect_sightings_) {
-        if (s.image >= images_.size() || s.stamp_s != images_.stamps_s[s.image]) {
+        if (s.image >= images_.size() || std::abs(s.stamp_s - images_.stamps_s[s.image]) > 1e-6) {
             throw ParseError(
                 path, FileLocation{},
                 fmt::format("sighting of defect {} in image {} at {} s, but {} has {} stamps{}",

@@ -176,6 +176,36 @@ TEST(ScenarioOutputs, RecordingsWithoutTheDefectFileStillOpen) {
     EXPECT_TRUE(recording.image_visible_defects().empty());
 }
 
+TEST(ScenarioOutputs, SightingsCarryTheCameraModelAndMustMatchTheirImages) {
+    const Scenario scenario = plate_scenario("5.0", "1.0");
+    const fs::path dir = fs::path(::testing::TempDir()) /
+                         ("scantling_scenario_outputs_sightings_" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    run_scenario(scenario, dir.string());
+    const io::Recording recording = io::open_recording(dir.string());
+    ASSERT_TRUE(recording.image_intrinsics().has_value());
+    ASSERT_TRUE(recording.image_T_body_sensor().has_value());
+    EXPECT_EQ(recording.image_intrinsics()->width, 64);  // the scenario's camera
+    // One sighting per id in view, with its image's index and stamp, inside the image.
+    std::size_t in_view = 0;
+    for (const std::vector<int>& ids : recording.image_visible_defects()) in_view += ids.size();
+    ASSERT_EQ(recording.defect_sightings().size(), in_view);
+    for (const io::DefectSighting& s : recording.defect_sightings()) {
+        EXPECT_EQ(s.stamp_s, recording.images().stamps_s[s.image]);
+        EXPECT_TRUE(recording.image_intrinsics()->contains(s.pixel));
+        EXPECT_GT(s.radius_px, 0.0);
+    }
+    // A sighting of an image that does not exist is refused, naming the file.
+    std::ofstream(dir / "images" / "defect_sightings.csv", std::ios::app) << "99,9.9,0,1,1,1\n";
+    try {
+        io::open_recording(dir.string());
+        ADD_FAILURE() << "no error";
+    } catch (const ParseError& e) {
+        EXPECT_NE(std::string(e.what()).find("defect_sightings.csv"), std::string::npos);
+    }
+    fs::remove_all(dir);
+}
+
 TEST(ScenarioOutputs, DepthFramesComeWithTheCameraMount) {
     const Scenario scenario = parse_scenario(kDepthScenario, "depth.yaml");
     const io::Recording recording = run(scenario, "depth_mount");
