@@ -247,6 +247,7 @@ void write_crop(const fs::path& path, const loc::DefectObservation& view,
         io::crop(image, static_cast<int>(std::lround(view.pixel.x())) - half,
                  static_cast<int>(std::lround(view.pixel.y())) - half, 2 * half + 1, 2 * half + 1);
     if (cut.width == 0) return;
+    fs::create_directories(path.parent_path());
     io::write_png(path.string(), cut);
     files.crop = true;
 }
@@ -259,9 +260,9 @@ void write_defects(const fs::path& dir, const DefectSurvey& survey,
     for (std::size_t i = 0; i < survey.defects.size(); ++i) {
         const loc::MappedDefect& d = survey.defects[i].mapped;
         const fs::path folder = dir / "defects" / std::to_string(d.defect_id);
-        fs::create_directories(folder);
         write_crop(folder / "crop.png", d.best_view, recording, files[i]);
         if (!d.best_view.local_cloud_world.empty()) {
+            fs::create_directories(folder);
             io::write_cloud((folder / "cloud.ply").string(), d.best_view.local_cloud_world);
             files[i].cloud = true;
         }
