@@ -11,15 +11,17 @@
 namespace scantling::localization {
 namespace {
 
-/// The index of the view with the smallest measurement covariance among `used`.
+/// Whether view `a` is the sharper one (the smaller measurement covariance): the view whose
+/// crop and cloud the defect keeps.
+bool sharper(const DefectObservation& a, const DefectObservation& b) {
+    return a.measurement_covariance.trace() < b.measurement_covariance.trace();
+}
+
+/// The index of the sharpest view among `used`.
 std::size_t best_of(const std::vector<DefectObservation>& views, const std::vector<bool>& used) {
     std::size_t best = views.size();
     for (std::size_t i = 0; i < views.size(); ++i) {
-        if (!used[i]) continue;
-        if (best == views.size() ||
-            views[i].measurement_covariance.trace() < views[best].measurement_covariance.trace()) {
-            best = i;
-        }
+        if (used[i] && (best == views.size() || sharper(views[i], views[best]))) best = i;
     }
     return best;
 }
@@ -108,12 +110,9 @@ void DefectMap::add(DefectObservation view) {
     std::vector<DefectObservation>& list = views_[view.defect_id];
     ++num_views_;
     // Only the best view's cloud is ever written: keep one, not one per view.
-    const auto best = std::min_element(
-        list.begin(), list.end(), [](const DefectObservation& a, const DefectObservation& b) {
-            return a.measurement_covariance.trace() < b.measurement_covariance.trace();
-        });
+    const auto best = std::min_element(list.begin(), list.end(), sharper);
     if (best != list.end()) {
-        if (view.measurement_covariance.trace() < best->measurement_covariance.trace()) {
+        if (sharper(view, *best)) {
             best->local_cloud_world = PointCloud{};
         } else {
             view.local_cloud_world = PointCloud{};

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include <scantling/core/se3.hpp>
+
 namespace scantling::localization {
 
 std::optional<FusedState> fused_state_at(std::span<const FusedState> track, double stamp_s,
@@ -18,10 +20,7 @@ std::optional<FusedState> fused_state_at(std::span<const FusedState> track, doub
     const double w = (stamp_s - a.stamp_s) / (b.stamp_s - a.stamp_s);
     FusedState s = w < 0.5 ? a : b;
     s.stamp_s = stamp_s;
-    const Eigen::Quaterniond qa(a.T_world_body.linear()), qb(b.T_world_body.linear());
-    s.T_world_body.linear() = qa.slerp(w, qb).toRotationMatrix();
-    s.T_world_body.translation() =
-        (1.0 - w) * a.T_world_body.translation() + w * b.T_world_body.translation();
+    s.T_world_body = interpolate(a.T_world_body, b.T_world_body, w);
     s.v_world_mps = (1.0 - w) * a.v_world_mps + w * b.v_world_mps;
     return s;
 }

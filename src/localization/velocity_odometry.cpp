@@ -3,17 +3,15 @@
 #include <cmath>
 #include <numbers>
 
+#include <scantling/core/se3.hpp>
+
 #include "detail/config_checks.hpp"
 
 namespace scantling::localization {
 namespace {
 
-/// Heading of the body's x axis about world z (ZYX yaw), radians.
-double yaw_of(const Eigen::Matrix3d& R) { return std::atan2(R(1, 0), R(0, 0)); }
-
-Eigen::Matrix3d rotation_z(double rad) {
-    return Eigen::AngleAxisd(rad, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-}
+/// Heading of the body's x axis about world z (the ZYX yaw), radians.
+double yaw_of(const Eigen::Matrix3d& R) { return euler_zyx_from_rotation(R).z(); }
 
 }  // namespace
 
@@ -48,12 +46,12 @@ io::VioRecord VelocityOdometry::integrate(const io::VioRecord& sample,
                  .vio_yaw_rad = {},
                  .imu_yaw_rad = {}};
     if (R_world_body) {
-        const double imu_yaw_rad = yaw_of(*R_world_body);
+        const Eigen::Vector3d rpy_imu = euler_zyx_from_rotation(*R_world_body);
         yaw_odom_rad_ =
-            yaw_odom_rad_ ? *yaw_odom_rad_ + yaw_step(sample, imu_yaw_rad) : imu_yaw_rad;
+            yaw_odom_rad_ ? *yaw_odom_rad_ + yaw_step(sample, rpy_imu.z()) : rpy_imu.z();
         // The IMU's tilt under the integrated heading.
-        R_odom_body_ = rotation_z(*yaw_odom_rad_) * rotation_z(-imu_yaw_rad) * *R_world_body;
-        now.imu_yaw_rad = imu_yaw_rad;
+        R_odom_body_ = rotation_from_euler_zyx(rpy_imu.x(), rpy_imu.y(), *yaw_odom_rad_);
+        now.imu_yaw_rad = rpy_imu.z();
     }
     if (sample.valid) now.vio_yaw_rad = yaw_of(sample.T_odom_body.linear());
     if (valid) {

@@ -22,6 +22,8 @@
 #include <scantling/localization/column_registration.hpp>
 #include <scantling/localization/localizer.hpp>
 
+#include "recorded_truth.hpp"
+
 namespace scantling::localization {
 namespace {
 
@@ -141,11 +143,7 @@ class ColumnRegistrationSim : public ::testing::Test {
     }
 
     static Eigen::Isometry3d truth_at(double t) {
-        const auto& gt = recording_->ground_truth();
-        const auto it =
-            std::lower_bound(gt.begin(), gt.end(), t,
-                             [](const io::StampedPose& p, double s) { return p.stamp_s < s; });
-        return it == gt.end() ? gt.back().T_world_body : it->T_world_body;
+        return test::truth_at(recording_->ground_truth(), t);
     }
 
     static inline io::Recording* recording_ = nullptr;

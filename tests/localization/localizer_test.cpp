@@ -13,6 +13,8 @@
 #include <scantling/io/structural_map.hpp>
 #include <scantling/localization/localizer.hpp>
 
+#include "recorded_truth.hpp"
+
 namespace scantling::localization {
 namespace {
 
@@ -90,11 +92,7 @@ class LocalizerTest : public ::testing::Test {
     }
 
     static Eigen::Isometry3d truth_at(double t) {
-        const auto& gt = recording_->ground_truth();
-        const auto it =
-            std::lower_bound(gt.begin(), gt.end(), t,
-                             [](const io::StampedPose& p, double s) { return p.stamp_s < s; });
-        return it == gt.end() ? gt.back().T_world_body : it->T_world_body;
+        return test::truth_at(recording_->ground_truth(), t);
     }
 
     static double mean_error(const std::vector<FusedState>& fused) {
