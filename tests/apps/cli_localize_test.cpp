@@ -73,6 +73,8 @@ TEST_F(CliLocalize, BadInputIsOneLineAndWritesNothing) {
                           "--filter");
     expect_one_error_line(run("localize " + rec + " --out " + quoted(path("o")) + " --start maybe"),
                           "--start");
+    expect_one_error_line(run("localize " + rec + " --out " + quoted(path("o")) + " --vio speed"),
+                          "--vio");
     expect_one_error_line(run("localize " + rec + " --out " + quoted(path("rec/out"))), "rec/out");
     std::ofstream(path("bad.json")) << "{\"name\": \"x\", \"compartments\": [{\"id\": 0}]}";
     expect_one_error_line(run("localize " + rec + " --out " + quoted(path("o")) + " --metadata " +
