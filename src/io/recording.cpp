@@ -289,6 +289,7 @@ void Recording::read_extra_streams(const std::string& directory) {
     read_if(layout::kPressure, &read_pressure_csv, pressure_);
     read_if(layout::kDvl, &read_dvl_csv, dvl_);
     read_if(layout::kWheelOdometry, &read_wheel_odometry_csv, wheel_odometry_);
+    read_if(layout::kBarometer, &read_barometer_csv, barometer_);
 }
 
 }  // namespace scantling::io

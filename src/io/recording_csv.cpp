@@ -158,6 +158,8 @@ WheelOdometryRecord make_wheel(const std::vector<double>& v) {
     return {v[0], v[1], v[2], v[3] != 0.0};
 }
 
+BarometerRecord make_barometer(const std::vector<double>& v) { return {v[0], v[1]}; }
+
 // Invalid readings are written as "nan", so these files allow non-finite numbers.
 constexpr detail::NonFinite kAllowNan = detail::NonFinite::kAllow;
 
@@ -183,6 +185,10 @@ std::vector<DvlRecord> read_dvl_csv(const std::string& path) {
 std::vector<WheelOdometryRecord> read_wheel_odometry_csv(const std::string& path) {
     return read_csv<WheelOdometryRecord>(path, {recording_layout::kWheelOdometryHeader},
                                          &make_wheel);
+}
+
+std::vector<BarometerRecord> read_barometer_csv(const std::string& path) {
+    return read_csv<BarometerRecord>(path, {recording_layout::kBarometerHeader}, &make_barometer);
 }
 
 std::string recording_layout::frame_stem(std::size_t index) { return fmt::format("{:06d}", index); }

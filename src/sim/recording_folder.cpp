@@ -20,10 +20,10 @@ namespace layout = io::recording_layout;
 
 constexpr std::size_t kFrameStemDigits = 6;  // layout::frame_stem, more digits past 999999
 
-const char* const kTopFiles[] = {layout::kGroundTruth,  layout::kImu,      layout::kVio,
-                                 layout::kSummary,      layout::kTiming,   layout::kRange,
-                                 layout::kUwb,          layout::kPressure, layout::kDvl,
-                                 layout::kWheelOdometry};
+const char* const kTopFiles[] = {layout::kGroundTruth,   layout::kImu,      layout::kVio,
+                                 layout::kSummary,       layout::kTiming,   layout::kRange,
+                                 layout::kUwb,           layout::kPressure, layout::kDvl,
+                                 layout::kWheelOdometry, layout::kBarometer};
 const char* const kFrameFolders[] = {layout::kLidarDir, layout::kDepthDir,   layout::kImagesDir,
                                      layout::kSonarDir, layout::kRosetteDir, layout::kStereoDir};
 // Files of the frame folders besides the frames (each folder has a subset).

@@ -158,6 +158,12 @@ void RecordingWriter::add_wheel_odometry(const WheelOdometrySample& s) {
     ++counts_.wheel_odometry;
 }
 
+void RecordingWriter::add_barometer(const BarometerSample& s) {
+    append_csv(barometer_csv_, layout::kBarometerHeader,
+               fmt::format("{},{}", s.stamp_s, s.altitude_m));
+    ++counts_.barometer;
+}
+
 void RecordingWriter::finish_extra() const {
     write_stream(layout::kSonarDir, sonar_);
     write_stream(layout::kRosetteDir, rosette_);
@@ -167,7 +173,8 @@ void RecordingWriter::finish_extra() const {
         {layout::kUwb, &uwb_csv_},
         {layout::kPressure, &pressure_csv_},
         {layout::kDvl, &dvl_csv_},
-        {layout::kWheelOdometry, &wheel_odometry_csv_}};
+        {layout::kWheelOdometry, &wheel_odometry_csv_},
+        {layout::kBarometer, &barometer_csv_}};
     for (const auto& [name, csv] : csvs) {
         if (!csv->empty()) write_text(path(name), *csv);
     }

@@ -135,6 +135,8 @@ Firing row_firing(const SensorSpec& spec, const std::string& key) {
             return {detail::pressure_config(spec, key).rate_hz, kCsvRowBytes, "one row"};
         case SensorType::kDvl:
             return {detail::dvl_config(spec, key).rate_hz, kCsvRowBytes, "one row"};
+        case SensorType::kBarometer:
+            return {detail::barometer_config(spec, key).rate_hz, kCsvRowBytes, "one row"};
         default:
             return {detail::wheel_config(spec, key).rate_hz, kCsvRowBytes, "one row"};
     }

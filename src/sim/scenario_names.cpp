@@ -31,6 +31,8 @@ std::string_view to_string(SensorType type) {
             return "dvl";
         case SensorType::kWheelOdometry:
             return "wheel_odometry";
+        case SensorType::kBarometer:
+            return "barometer";
     }
     return "?";
 }

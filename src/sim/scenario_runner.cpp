@@ -17,30 +17,10 @@
 namespace scantling::sim {
 namespace {
 
-constexpr std::uint64_t kVehicleStream = 0;
-constexpr std::uint64_t kFirstSensorStream = 1;
-constexpr std::uint64_t kMapStream = 100;
+using detail::kMapStream;
+using detail::kVehicleStream;
+using Sensors = detail::ScenarioSensors;
 constexpr double kStampTolerance_s = 1e-9;
-
-using Sensors = std::vector<std::unique_ptr<detail::ScenarioSensor>>;
-
-Sensors make_sensors(const Scenario& scenario, const Rng& root) {
-    Sensors sensors;
-    for (std::size_t i = 0; i < scenario.sensors.size(); ++i) {
-        const std::string prefix = "sensors[" + std::to_string(i) + "]";
-        sensors.push_back(
-            detail::make_sensor(scenario.sensors[i], root.split(kFirstSensorStream + i), prefix));
-        const SensorType type = scenario.sensors[i].type;
-        const bool motion = type == SensorType::kImu || type == SensorType::kVio ||
-                            type == SensorType::kDvl || type == SensorType::kWheelOdometry;
-        // Motion sensors sample the tick state: at most one sample per tick.
-        if (motion && sensors.back()->rate_hz() * scenario.dt_s > 1.0 + 1e-9) {
-            throw ConfigError(prefix + ".rate_hz = " + std::to_string(sensors.back()->rate_hz()) +
-                              ", expected <= 1 / dt_s = " + std::to_string(1.0 / scenario.dt_s));
-        }
-    }
-    return sensors;
-}
 
 RecordingSummary summary_of(const Scenario& scenario, const Sensors& sensors, double duration_s) {
     RecordingSummary summary{.scenario = scenario.name,
@@ -99,8 +79,10 @@ void run_loop(const Loop& loop) {
             const double stamp_s = clock.last_fire_time_s(i);
             // Measurements start in [0, duration): a sweep at the end would see no motion.
             if (stamp_s >= loop.duration_s - kStampTolerance_s) continue;
-            loop.sensors[i]->fire(
-                {loop.scene, loop.vehicle, k, stamp_s, loop.scenario.parallel, loop.writer});
+            const detail::FireContext context{loop.scene, loop.vehicle, k, stamp_s,
+                                              loop.scenario.parallel};
+            loop.writer.add(
+                {.sensor_index = i, .stamp_s = stamp_s, .data = loop.sensors[i]->fire(context)});
         }
         if (clock.now_s() >= next_report_s) {
             report(loop, clock.now_s());
@@ -110,6 +92,28 @@ void run_loop(const Loop& loop) {
 }
 
 }  // namespace
+
+namespace detail {
+
+ScenarioSensors make_scenario_sensors(const Scenario& scenario, const Rng& root) {
+    ScenarioSensors sensors;
+    for (std::size_t i = 0; i < scenario.sensors.size(); ++i) {
+        const std::string prefix = "sensors[" + std::to_string(i) + "]";
+        sensors.push_back(
+            make_sensor(scenario.sensors[i], root.split(kFirstSensorStream + i), prefix));
+        const SensorType type = scenario.sensors[i].type;
+        const bool motion = type == SensorType::kImu || type == SensorType::kVio ||
+                            type == SensorType::kDvl || type == SensorType::kWheelOdometry;
+        // Motion sensors sample the tick state: at most one sample per tick.
+        if (motion && sensors.back()->rate_hz() * scenario.dt_s > 1.0 + 1e-9) {
+            throw ConfigError(prefix + ".rate_hz = " + std::to_string(sensors.back()->rate_hz()) +
+                              ", expected <= 1 / dt_s = " + std::to_string(1.0 / scenario.dt_s));
+        }
+    }
+    return sensors;
+}
+
+}  // namespace detail
 
 double scenario_duration_s(const Scenario& scenario) {
     if (scenario.duration_s > 0.0) return scenario.duration_s;
@@ -125,7 +129,7 @@ ScenarioRunResult run_scenario(const Scenario& scenario, const std::string& dire
     const auto num_ticks =
         static_cast<std::int64_t>(std::floor(duration_s / scenario.dt_s + 1e-6)) + 1;
     const Rng root(scenario.seed);
-    Sensors sensors = make_sensors(scenario, root);
+    Sensors sensors = detail::make_scenario_sensors(scenario, root);
     const World world = build_world(scenario.world, scenario.base_directory);
     Rng vehicle_rng = root.split(kVehicleStream);
     const detail::VehicleHistory vehicle = detail::simulate_vehicle(

@@ -30,7 +30,8 @@ const std::vector<std::pair<std::string, SensorType>> kSensorTypes{
     {"uwb", SensorType::kUwb},
     {"pressure", SensorType::kPressure},
     {"dvl", SensorType::kDvl},
-    {"wheel_odometry", SensorType::kWheelOdometry}};
+    {"wheel_odometry", SensorType::kWheelOdometry},
+    {"barometer", SensorType::kBarometer}};
 
 const std::vector<std::pair<std::string, SensorPreset>> kPresets{
     {"os1_64", SensorPreset::kOs1_64},

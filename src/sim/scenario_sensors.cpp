@@ -121,20 +121,23 @@ class LidarSensor : public ScenarioSensor {
           motion_distortion_(spec.motion_distortion),
           write_ply_(spec.write_ply || spec.motion_distortion) {}
     double rate_hz() const override { return lidar_.config().rate_hz; }
-    void fire(const FireContext& c) override {
+    double lookahead_s() const override {
+        return motion_distortion_ ? 1.0 / lidar_.config().rate_hz : 0.0;
+    }
+    SensorData fire(const FireContext& c) override {
         const Eigen::Isometry3d T_world_body = c.vehicle.pose_at(c.stamp_s);
-        PointCloud sweep;
+        LidarReading reading{.sweep = {},
+                             .T_world_sensor = T_world_body * lidar_.config().T_body_sensor,
+                             .T_body_sensor = lidar_.config().T_body_sensor,
+                             .write_ply = write_ply_};
         if (motion_distortion_) {
             const auto pose_at = [&c](double t_s) { return c.vehicle.pose_at(t_s); };
-            sweep = lidar_.scan_moving(c.scene, pose_at, c.stamp_s, rng_, c.parallel);
-            sweep.stamp_s = c.stamp_s;
+            reading.sweep = lidar_.scan_moving(c.scene, pose_at, c.stamp_s, rng_, c.parallel);
+            reading.sweep.stamp_s = c.stamp_s;
         } else {
-            sweep = lidar_.scan(c.scene, T_world_body, rng_, c.stamp_s, c.parallel);
+            reading.sweep = lidar_.scan(c.scene, T_world_body, rng_, c.stamp_s, c.parallel);
         }
-        if (c.writer.counts().lidar_sweeps == 0) {
-            c.writer.set_lidar_extrinsic(lidar_.config().T_body_sensor);
-        }
-        c.writer.add_lidar_sweep(sweep, T_world_body * lidar_.config().T_body_sensor, write_ply_);
+        return reading;
     }
 
   private:
@@ -149,8 +152,8 @@ class ImuSensor : public ScenarioSensor {
     ImuSensor(const SensorSpec& spec, Rng rng, const std::string& prefix)
         : rng_(std::move(rng)), imu_(imu_config(spec, prefix), rng_) {}
     double rate_hz() const override { return imu_.config().rate_hz; }
-    void fire(const FireContext& c) override {
-        c.writer.add_imu(imu_.measure(c.vehicle.at_tick(c.tick), rng_));
+    SensorData fire(const FireContext& c) override {
+        return imu_.measure(c.vehicle.at_tick(c.tick), rng_);
     }
 
   private:
@@ -179,10 +182,10 @@ class VioSensor : public ScenarioSensor {
           features_(vio_features(spec, prefix)),
           rng_(std::move(rng)) {}
     double rate_hz() const override { return vio_.config().rate_hz; }
-    void fire(const FireContext& c) override {
+    SensorData fire(const FireContext& c) override {
         const MotionState& state = c.vehicle.at_tick(c.tick);
         const double quality = vio_feature_quality(c.scene, state.T_world_body, features_);
-        c.writer.add_vio(vio_.step(state, quality, rng_));
+        return vio_.step(state, quality, rng_);
     }
 
   private:
@@ -196,13 +199,12 @@ class DepthSensor : public ScenarioSensor {
     DepthSensor(const SensorSpec& spec, Rng rng, const std::string& prefix)
         : camera_(depth_config(spec, prefix)), rng_(std::move(rng)) {}
     double rate_hz() const override { return camera_.config().rate_hz; }
-    void fire(const FireContext& c) override {
+    SensorData fire(const FireContext& c) override {
         const Eigen::Isometry3d T_world_body = c.vehicle.pose_at(c.stamp_s);
-        const PointCloud frame = camera_.scan(c.scene, T_world_body, rng_, c.stamp_s, c.parallel);
-        if (c.writer.counts().depth_frames == 0) {
-            c.writer.set_depth_extrinsic(camera_.config().T_body_sensor);
-        }
-        c.writer.add_depth_frame(frame, T_world_body * camera_.config().T_body_sensor);
+        return DepthReading{
+            .frame = camera_.scan(c.scene, T_world_body, rng_, c.stamp_s, c.parallel),
+            .T_world_sensor = T_world_body * camera_.config().T_body_sensor,
+            .T_body_sensor = camera_.config().T_body_sensor};
     }
 
   private:
@@ -215,14 +217,14 @@ class CameraSensor : public ScenarioSensor {
     CameraSensor(const SensorSpec& spec, Rng rng, const std::string& prefix)
         : camera_(camera_config(spec, prefix)), rng_(std::move(rng)) {}
     double rate_hz() const override { return camera_.config().rate_hz; }
-    void fire(const FireContext& c) override {
+    SensorData fire(const FireContext& c) override {
         const Eigen::Isometry3d T_world_body = c.vehicle.pose_at(c.stamp_s);
-        const RgbImage image = camera_.render(c.scene, T_world_body, rng_, c.parallel);
-        if (c.writer.counts().images == 0) {
-            c.writer.set_image_camera(camera_.config().intrinsics, camera_.config().T_body_sensor);
-        }
-        c.writer.add_image(image, c.stamp_s, T_world_body * camera_.config().T_body_sensor,
-                           camera_.sight_defects(c.scene, T_world_body));
+        return ImageReading{.image = camera_.render(c.scene, T_world_body, rng_, c.parallel),
+                            .stamp_s = c.stamp_s,
+                            .T_world_sensor = T_world_body * camera_.config().T_body_sensor,
+                            .intrinsics = camera_.config().intrinsics,
+                            .T_body_sensor = camera_.config().T_body_sensor,
+                            .sightings = camera_.sight_defects(c.scene, T_world_body)};
     }
 
   private:

@@ -64,10 +64,11 @@ class SonarSensor : public ScenarioSensor {
     SonarSensor(const SensorSpec& spec, Rng rng, const std::string& prefix)
         : sonar_(sonar_config(spec, prefix)), rng_(std::move(rng)) {}
     double rate_hz() const override { return sonar_.config().rate_hz; }
-    void fire(const FireContext& c) override {
+    SensorData fire(const FireContext& c) override {
         const Eigen::Isometry3d T_world_body = c.vehicle.pose_at(c.stamp_s);
-        const SonarImage image = sonar_.scan(c.scene, T_world_body, rng_, c.stamp_s, c.parallel);
-        c.writer.add_sonar(image, T_world_body * sonar_.config().T_body_sensor);
+        return SonarReading{
+            .image = sonar_.scan(c.scene, T_world_body, rng_, c.stamp_s, c.parallel),
+            .T_world_sensor = T_world_body * sonar_.config().T_body_sensor};
     }
 
   private:
@@ -80,10 +81,11 @@ class RosetteSensor : public ScenarioSensor {
     RosetteSensor(const SensorSpec& spec, Rng rng, const std::string& prefix)
         : lidar_(rosette_config(spec, prefix)), rng_(std::move(rng)) {}
     double rate_hz() const override { return lidar_.config().frame_rate_hz; }
-    void fire(const FireContext& c) override {
+    SensorData fire(const FireContext& c) override {
         const Eigen::Isometry3d T_world_body = c.vehicle.pose_at(c.stamp_s);
-        const PointCloud frame = lidar_.scan(c.scene, T_world_body, rng_, c.stamp_s, c.parallel);
-        c.writer.add_rosette_frame(frame, T_world_body * lidar_.config().T_body_sensor);
+        return RosetteReading{
+            .frame = lidar_.scan(c.scene, T_world_body, rng_, c.stamp_s, c.parallel),
+            .T_world_sensor = T_world_body * lidar_.config().T_body_sensor};
     }
 
   private:
@@ -96,10 +98,11 @@ class StereoSensor : public ScenarioSensor {
     StereoSensor(const SensorSpec& spec, Rng rng, const std::string& prefix)
         : stereo_(stereo_config(spec, prefix)), rng_(std::move(rng)) {}
     double rate_hz() const override { return stereo_.config().rate_hz; }
-    void fire(const FireContext& c) override {
+    SensorData fire(const FireContext& c) override {
         const Eigen::Isometry3d T_world_body = c.vehicle.pose_at(c.stamp_s);
-        const PointCloud frame = stereo_.scan(c.scene, T_world_body, rng_, c.stamp_s, c.parallel);
-        c.writer.add_stereo_frame(frame, T_world_body * stereo_.config().T_body_sensor);
+        return StereoReading{
+            .frame = stereo_.scan(c.scene, T_world_body, rng_, c.stamp_s, c.parallel),
+            .T_world_sensor = T_world_body * stereo_.config().T_body_sensor};
     }
 
   private:

@@ -3,6 +3,7 @@
 #include <string>
 
 #include <scantling/core/error.hpp>
+#include <scantling/sim/barometer.hpp>
 #include <scantling/sim/dvl.hpp>
 #include <scantling/sim/pressure.hpp>
 #include <scantling/sim/range_finder.hpp>
@@ -68,6 +69,14 @@ DvlConfig dvl_config(const SensorSpec& spec, const std::string& prefix) {
     return config;
 }
 
+BarometerConfig barometer_config(const SensorSpec& spec, const std::string& prefix) {
+    BarometerConfig config = spec.noise ? BarometerConfig{} : noiseless(BarometerConfig{});
+    if (spec.rate_hz > 0.0) config.rate_hz = spec.rate_hz;
+    config.T_body_sensor = spec.T_body_sensor.to_isometry();
+    config.validate(prefix);
+    return config;
+}
+
 WheelOdometryConfig wheel_config(const SensorSpec& spec, const std::string& prefix) {
     WheelOdometryConfig config =
         spec.noise ? WheelOdometryConfig{} : noiseless(WheelOdometryConfig{});
@@ -83,8 +92,8 @@ class RangeSensor : public ScenarioSensor {
     RangeSensor(const SensorSpec& spec, Rng rng, const std::string& prefix)
         : ranger_(range_config(spec, prefix)), rng_(std::move(rng)) {}
     double rate_hz() const override { return ranger_.config().rate_hz; }
-    void fire(const FireContext& c) override {
-        c.writer.add_range(ranger_.measure(c.scene, c.vehicle.pose_at(c.stamp_s), rng_, c.stamp_s));
+    SensorData fire(const FireContext& c) override {
+        return ranger_.measure(c.scene, c.vehicle.pose_at(c.stamp_s), rng_, c.stamp_s);
     }
 
   private:
@@ -97,8 +106,8 @@ class UwbSensor : public ScenarioSensor {
     UwbSensor(const SensorSpec& spec, Rng rng, const std::string& prefix)
         : tag_(uwb_config(spec, prefix)), rng_(std::move(rng)) {}
     double rate_hz() const override { return tag_.config().rate_hz; }
-    void fire(const FireContext& c) override {
-        c.writer.add_uwb(tag_.measure(c.scene, c.vehicle.pose_at(c.stamp_s), rng_, c.stamp_s));
+    SensorData fire(const FireContext& c) override {
+        return tag_.measure(c.scene, c.vehicle.pose_at(c.stamp_s), rng_, c.stamp_s);
     }
 
   private:
@@ -111,8 +120,8 @@ class PressureSensorPart : public ScenarioSensor {
     PressureSensorPart(const SensorSpec& spec, Rng rng, const std::string& prefix)
         : sensor_(pressure_config(spec, prefix)), rng_(std::move(rng)) {}
     double rate_hz() const override { return sensor_.config().rate_hz; }
-    void fire(const FireContext& c) override {
-        c.writer.add_pressure(sensor_.measure(c.vehicle.pose_at(c.stamp_s), rng_, c.stamp_s));
+    SensorData fire(const FireContext& c) override {
+        return sensor_.measure(c.vehicle.pose_at(c.stamp_s), rng_, c.stamp_s);
     }
 
   private:
@@ -125,8 +134,8 @@ class DvlSensor : public ScenarioSensor {
     DvlSensor(const SensorSpec& spec, Rng rng, const std::string& prefix)
         : dvl_(dvl_config(spec, prefix)), rng_(std::move(rng)) {}
     double rate_hz() const override { return dvl_.config().rate_hz; }
-    void fire(const FireContext& c) override {
-        c.writer.add_dvl(dvl_.measure(c.scene, c.vehicle.at_tick(c.tick), rng_));
+    SensorData fire(const FireContext& c) override {
+        return dvl_.measure(c.scene, c.vehicle.at_tick(c.tick), rng_);
     }
 
   private:
@@ -139,13 +148,27 @@ class WheelOdometrySensor : public ScenarioSensor {
     WheelOdometrySensor(const SensorSpec& spec, Rng rng, const std::string& prefix)
         : rng_(std::move(rng)), odometry_(wheel_config(spec, prefix), rng_) {}
     double rate_hz() const override { return odometry_.config().rate_hz; }
-    void fire(const FireContext& c) override {
-        c.writer.add_wheel_odometry(odometry_.measure(c.vehicle.at_tick(c.tick), rng_));
+    SensorData fire(const FireContext& c) override {
+        return odometry_.measure(c.vehicle.at_tick(c.tick), rng_);
     }
 
   private:
     Rng rng_;
     WheelOdometrySimulator odometry_;
+};
+
+class BarometerSensor : public ScenarioSensor {
+  public:
+    BarometerSensor(const SensorSpec& spec, Rng rng, const std::string& prefix)
+        : rng_(std::move(rng)), barometer_(barometer_config(spec, prefix), rng_) {}
+    double rate_hz() const override { return barometer_.config().rate_hz; }
+    SensorData fire(const FireContext& c) override {
+        return barometer_.measure(c.vehicle.pose_at(c.stamp_s), rng_, c.stamp_s);
+    }
+
+  private:
+    Rng rng_;
+    Barometer barometer_;
 };
 
 }  // namespace
@@ -163,6 +186,8 @@ std::unique_ptr<ScenarioSensor> make_ranging_sensor(const SensorSpec& spec, Rng 
             return std::make_unique<DvlSensor>(spec, std::move(rng), prefix);
         case SensorType::kWheelOdometry:
             return std::make_unique<WheelOdometrySensor>(spec, std::move(rng), prefix);
+        case SensorType::kBarometer:
+            return std::make_unique<BarometerSensor>(spec, std::move(rng), prefix);
         default:
             throw ConfigError(prefix + ".type: unknown sensor type");
     }

@@ -66,6 +66,8 @@ inline constexpr const char* kUwb = "uwb.csv";
 inline constexpr const char* kPressure = "pressure.csv";
 inline constexpr const char* kDvl = "dvl.csv";
 inline constexpr const char* kWheelOdometry = "wheel_odometry.csv";
+inline constexpr const char* kBarometer = "barometer.csv";
+inline constexpr const char* kBarometerHeader = "stamp_s,altitude_m";
 inline constexpr const char* kRangeHeader = "stamp_s,valid,range_m";
 inline constexpr const char* kUwbHeader = "stamp_s,anchor_id,range_m,valid,los";
 inline constexpr const char* kPressureHeader = "stamp_s,pressure_pa,depth_m";
@@ -174,6 +176,12 @@ struct WheelOdometryRecord {
     bool slipping = false;
 };
 
+/// One barometric altitude (world z of the sensor, with the barometer's offset and noise).
+struct BarometerRecord {
+    double stamp_s = 0.0;
+    double altitude_m = 0.0;
+};
+
 /// A stream of frames (lidar sweeps, depth frames, images): stamps and sensor poses.
 struct FrameIndex {
     std::string directory;                    ///< empty when the recording has no such stream
@@ -240,6 +248,7 @@ class Recording {
     const std::vector<PressureRecord>& pressure() const { return pressure_; }
     const std::vector<DvlRecord>& dvl() const { return dvl_; }
     const std::vector<WheelOdometryRecord>& wheel_odometry() const { return wheel_odometry_; }
+    const std::vector<BarometerRecord>& barometer() const { return barometer_; }
     /// Body poses at every clock step.
     const std::vector<StampedPose>& ground_truth() const { return ground_truth_; }
     const std::vector<ImuRecord>& imu() const { return imu_; }
@@ -274,6 +283,7 @@ class Recording {
     std::vector<PressureRecord> pressure_;
     std::vector<DvlRecord> dvl_;
     std::vector<WheelOdometryRecord> wheel_odometry_;
+    std::vector<BarometerRecord> barometer_;
     Eigen::Isometry3d lidar_T_body_sensor_ = Eigen::Isometry3d::Identity();
     std::optional<Eigen::Isometry3d> depth_T_body_sensor_;
     std::vector<StampedPose> ground_truth_;
@@ -319,6 +329,7 @@ std::vector<UwbRecord> read_uwb_csv(const std::string& path);
 std::vector<PressureRecord> read_pressure_csv(const std::string& path);
 std::vector<DvlRecord> read_dvl_csv(const std::string& path);
 std::vector<WheelOdometryRecord> read_wheel_odometry_csv(const std::string& path);
+std::vector<BarometerRecord> read_barometer_csv(const std::string& path);
 /// One number per line (blank lines skipped), finite and strictly increasing; ParseError
 /// naming the line otherwise.
 std::vector<double> read_stamps(const std::string& path);

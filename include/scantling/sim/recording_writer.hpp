@@ -27,6 +27,7 @@
 #include <scantling/sim/pinhole_camera.hpp>
 #include <scantling/sim/pressure.hpp>
 #include <scantling/sim/range_finder.hpp>
+#include <scantling/sim/sensor_reading.hpp>
 #include <scantling/sim/uwb.hpp>
 #include <scantling/sim/vio.hpp>
 #include <scantling/sim/wheel_odometry.hpp>
@@ -66,6 +67,7 @@ struct RecordingCounts {
     std::int64_t pressure = 0;
     std::int64_t dvl = 0;
     std::int64_t wheel_odometry = 0;
+    std::int64_t barometer = 0;
 };
 
 /// Accepts a folder that holds only what a recording holds: at the top the files and folders
@@ -123,6 +125,10 @@ class RecordingWriter {
     void add_pressure(const PressureSample& sample);
     void add_dvl(const DvlSample& sample);
     void add_wheel_odometry(const WheelOdometrySample& sample);
+    void add_barometer(const BarometerSample& sample);
+    /// Writes one sensor reading with the add_* of its type; a frame stream's mount is taken
+    /// from its first frame (recording_writer_reading.cpp).
+    void add(const SensorReading& reading);
     /// Writes the buffered streams and summary.json. Call once, last.
     void finish(const RecordingSummary& summary);
     /// Writes timing.json (wall time; kept out of summary.json so that recordings of the
@@ -177,6 +183,7 @@ class RecordingWriter {
     std::string pressure_csv_;
     std::string dvl_csv_;
     std::string wheel_odometry_csv_;
+    std::string barometer_csv_;
 };
 
 }  // namespace scantling::sim

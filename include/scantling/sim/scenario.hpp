@@ -139,6 +139,7 @@ enum class SensorType {
     kPressure,
     kDvl,
     kWheelOdometry,
+    kBarometer,
 };
 
 /// Presets, by sensor type: spinning_lidar os1_64 | hdl64e | os0_64; depth_camera l515 |

@@ -11,6 +11,7 @@
 #include <scantling/sim/recording_writer.hpp>
 #include <scantling/sim/scenario.hpp>
 #include <scantling/sim/sensor_mount.hpp>
+#include <scantling/sim/sensor_reading.hpp>
 #include <scantling/sim/surface_projector.hpp>
 
 namespace scantling::sim::detail {
@@ -20,6 +21,9 @@ class VehicleHistory {
   public:
     VehicleHistory(std::vector<MotionState> states, double dt_s)
         : states_(std::move(states)), dt_s_(dt_s) {}
+    /// The state of the next tick (the closed loop's vehicle grows its history as it goes).
+    void append(const MotionState& state) { states_.push_back(state); }
+    const MotionState& last() const { return states_.back(); }
     const MotionState& at_tick(std::int64_t k) const {
         return states_[static_cast<std::size_t>(k)];
     }
@@ -49,19 +53,33 @@ std::vector<MotionState> crawler_states(const VehicleSpec& spec, const Trajector
 struct FireContext {
     const SceneView& scene;
     const VehicleHistory& vehicle;
-    std::int64_t tick;
-    double stamp_s;  ///< nominal firing time
+    std::int64_t tick;  ///< the tick at or after the stamp (motion sensors sample its state)
+    double stamp_s;     ///< nominal firing time
     const ParallelConfig& parallel;
-    RecordingWriter& writer;
 };
 
-/// A scheduled sensor of the scenario.
+/// A scheduled sensor of the scenario: returns its data, never writes it.
 class ScenarioSensor {
   public:
     virtual ~ScenarioSensor() = default;
     virtual double rate_hz() const = 0;
-    virtual void fire(const FireContext& context) = 0;
+    /// How far past its stamp the sensor needs the vehicle's motion: a motion-distorted sweep
+    /// is cast along its whole revolution, so it can only fire once that has been simulated.
+    virtual double lookahead_s() const { return 0.0; }
+    virtual SensorData fire(const FireContext& context) = 0;
 };
+
+/// Random streams of a scenario run: Rng(seed).split(k) (scenario_runner.hpp).
+inline constexpr std::uint64_t kVehicleStream = 0;
+inline constexpr std::uint64_t kFirstSensorStream = 1;  ///< sensor i draws from 1 + i
+inline constexpr std::uint64_t kMapStream = 100;
+
+using ScenarioSensors = std::vector<std::unique_ptr<ScenarioSensor>>;
+
+/// The sensors of `scenario` in order, each on its stream of `root`. Throws ConfigError naming
+/// "sensors[i]" for a bad sensor or a motion sensor faster than the clock (it samples the
+/// tick's state: at most once per tick).
+ScenarioSensors make_scenario_sensors(const Scenario& scenario, const Rng& root);
 
 /// The sensor of `spec`, drawing from `rng` (ConfigError for a bad preset or parameter).
 std::unique_ptr<ScenarioSensor> make_sensor(const SensorSpec& spec, Rng rng,

@@ -6,6 +6,7 @@
 
 #include <string>
 
+#include <scantling/sim/barometer.hpp>
 #include <scantling/sim/depth_camera.hpp>
 #include <scantling/sim/dvl.hpp>
 #include <scantling/sim/imu.hpp>
@@ -41,5 +42,6 @@ UwbConfig uwb_config(const SensorSpec& spec, const std::string& prefix);
 PressureConfig pressure_config(const SensorSpec& spec, const std::string& prefix);
 DvlConfig dvl_config(const SensorSpec& spec, const std::string& prefix);
 WheelOdometryConfig wheel_config(const SensorSpec& spec, const std::string& prefix);
+BarometerConfig barometer_config(const SensorSpec& spec, const std::string& prefix);
 
 }  // namespace scantling::sim::detail
