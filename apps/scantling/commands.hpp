@@ -34,6 +34,15 @@ struct SimOptions {
     int num_threads = 0;                ///< 0 = the scenario's setting
 };
 
+struct MissionOptions {
+    std::string scenario;               ///< mission scenario YAML (mission/mission_scenario.hpp)
+    std::string out;                    ///< recording directory
+    std::optional<std::uint64_t> seed;  ///< overrides simulation.seed
+    bool force = false;                 ///< replace a recording folder once the new one is complete
+    bool progress = true;               ///< progress line on stderr
+    int num_threads = 0;                ///< ray casting threads; 0 = the scenario's setting
+};
+
 struct RegisterOptions {
     std::string source;                    ///< cloud to move (.pcd, .ply, .bin)
     std::string target;                    ///< cloud it is aligned to
@@ -51,6 +60,10 @@ struct RegisterOptions {
     std::string out;      ///< where the 4×4 T_target_source is written (alone, atomically)
     int num_threads = 0;  ///< 0 = all hardware threads
 };
+
+/// `scantling mission SCENARIO --out DIR`: one closed-loop run (mission/closed_loop.hpp); prints
+/// the path deviation, the estimate's error against the truth and the run's figures.
+void run_mission(const MissionOptions& options, std::ostream& out);
 
 /// `scantling info FILE`: counts, fields, bounds (and area for meshes), one "key: value" a line.
 void run_info(const InfoOptions& options, std::ostream& out);

@@ -37,6 +37,9 @@ struct CommandLine {
     scantling::app::SimOptions sim;
     CLI::App* sim_cmd = nullptr;
     CLI::Option* sim_seed = nullptr;
+    scantling::app::MissionOptions mission;
+    CLI::App* mission_cmd = nullptr;
+    CLI::Option* mission_seed = nullptr;
     std::uint64_t seed = 0;
     bool no_progress = false;
     scantling::app::RegisterOptions reg;
@@ -134,6 +137,24 @@ void define_sim(CLI::App& app, CommandLine& cl) {
         "Replace an existing recording, only once the new one is complete (a folder holding "
         "anything else is refused)");
     cl.sim_cmd->add_flag("--no-progress", cl.no_progress, "No progress line on stderr");
+}
+
+void define_mission(CLI::App& app, CommandLine& cl) {
+    auto* cmd = cl.mission_cmd = app.add_subcommand(
+        "mission", "Fly a mission in closed loop (simulator + the robot's stack) and record it");
+    cmd->add_option("SCENARIO", cl.mission.scenario, "Mission scenario YAML (see scenarios/)")
+        ->required()
+        ->type_name("");
+    cmd->add_option("--out", cl.mission.out, "Recording directory (created)")
+        ->required()
+        ->type_name("DIR");
+    cl.mission_seed =
+        cmd->add_option("--seed", cl.seed, "Overrides the scenario's seed")
+            ->type_name("N")
+            ->transform(whole_number_in(0, std::numeric_limits<std::uint64_t>::max()));
+    cmd->add_flag("--force", cl.mission.force,
+                  "Replace an existing recording, only once the new one is complete");
+    cmd->add_flag("--no-progress", cl.no_progress, "No progress line on stderr");
 }
 
 void define_register(CLI::App& app, CommandLine& cl) {
@@ -354,6 +375,7 @@ void define_commands(CLI::App& app, CommandLine& cl) {
         ->type_name("SIZE_M")
         ->check(finite_number(scantling::app::LowerBound::kPositive));
     define_sim(app, cl);
+    define_mission(app, cl);
     define_register(app, cl);
     define_eval(app, cl);
     define_odometry(app, cl);
@@ -370,6 +392,12 @@ void run(CommandLine& cl) {
         cl.sim.progress = !cl.no_progress;
         cl.sim.num_threads = cl.num_threads;
         return scantling::app::run_sim(cl.sim, std::cout);
+    }
+    if (cl.mission_cmd->parsed()) {
+        if (cl.mission_seed->count() > 0) cl.mission.seed = cl.seed;
+        cl.mission.progress = !cl.no_progress;
+        cl.mission.num_threads = cl.num_threads;
+        return scantling::app::run_mission(cl.mission, std::cout);
     }
     if (cl.eval_cmd->parsed()) {
         if (cl.eval_format->count() > 0) cl.eval.format = cl.eval_format_name;
@@ -410,8 +438,8 @@ int run_main(int argc, char** argv) {
         app.parse(argc, argv);
         if (app.get_subcommands().empty()) {
             return report_error(
-                "a subcommand is required: info, convert, downsample, sim, register, odometry, "
-                "localize or eval" +
+                "a subcommand is required: info, convert, downsample, sim, mission, register, "
+                "odometry, localize or eval" +
                 kSeeHelp);
         }
     } catch (const CLI::Success& e) {

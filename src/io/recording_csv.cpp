@@ -7,6 +7,8 @@
 #include <limits>
 
 #include <scantling/core/error.hpp>
+#include <scantling/core/se3.hpp>
+#include <scantling/io/mission_log.hpp>
 #include <scantling/io/recording.hpp>
 
 #include "detail/stamp_file.hpp"
@@ -299,6 +301,50 @@ detail::StampFile detail::read_stamp_file(const std::string& path) {
 
 std::vector<double> read_stamps(const std::string& path) {
     return detail::read_stamp_file(path).stamps_s;
+}
+
+}  // namespace scantling::io
+
+// The closed loop's CSVs (mission_log.hpp), read with the same checks as the sensor CSVs.
+namespace scantling::io {
+namespace {
+
+EstimateRecord make_estimate(const std::vector<double>& v) {
+    EstimateRecord record;
+    record.stamp_s = v[0];
+    record.T_world_body.translation() = Eigen::Vector3d(v[1], v[2], v[3]);
+    record.v_world_mps = Eigen::Vector3d(v[4], v[5], v[6]);
+    record.T_world_body.linear() = rotation_from_euler_zyx(v[7], v[8], v[9]);
+    record.position_sigma_m = Eigen::Vector3d(v[10], v[11], v[12]);
+    record.yaw_sigma_rad = v[13];
+    record.valid = v[14] != 0.0;
+    return record;
+}
+
+CommandRecord make_command(const std::vector<double>& v) {
+    return {v[0], Eigen::Vector3d(v[1], v[2], v[3]), v[4], Eigen::Vector3d(v[5], v[6], v[7]),
+            v[8] != 0.0};
+}
+
+PathPointRecord make_path_point(const std::vector<double>& v) {
+    return {Eigen::Vector3d(v[1], v[2], v[3]), v[4]};
+}
+
+}  // namespace
+
+std::vector<EstimateRecord> read_estimates_csv(const std::string& path) {
+    // An estimate lost by the estimator is written as NaN with valid = 0.
+    return read_csv<EstimateRecord>(path, {recording_layout::kMissionEstimatesHeader},
+                                    &make_estimate, kAllowNan);
+}
+
+std::vector<CommandRecord> read_commands_csv(const std::string& path) {
+    return read_csv<CommandRecord>(path, {recording_layout::kMissionCommandsHeader}, &make_command);
+}
+
+std::vector<PathPointRecord> read_intended_path_csv(const std::string& path) {
+    return read_csv<PathPointRecord>(path, {recording_layout::kMissionPathHeader},
+                                     &make_path_point);
 }
 
 }  // namespace scantling::io

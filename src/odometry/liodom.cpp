@@ -171,6 +171,7 @@ FrameReport LidarOdometry::register_and_map(const EdgeFeatures& edges, double st
                             result.num_correspondences, config_.registration.min_correspondences));
         }
         T = result.T_world_sensor;
+        report.information = result.information;
         report.status = result.num_degenerate > 0 ? FrameStatus::kDegenerate : FrameStatus::kOk;
         if (result.num_degenerate > 0) {
             report.message =

@@ -10,6 +10,7 @@
 #include <system_error>
 
 #include <scantling/core/error.hpp>
+#include <scantling/io/mission_log.hpp>
 #include <scantling/io/recording.hpp>
 
 namespace scantling::sim {
@@ -30,6 +31,10 @@ const char* const kFrameFolders[] = {layout::kLidarDir, layout::kDepthDir,   lay
 const char* const kFrameFolderFiles[] = {layout::kTimes, layout::kPoses, layout::kExtrinsic,
                                          layout::kVisibleDefects, layout::kSonarMeta};
 // write_world, and the descriptor cache `scantling localize` adds beside the map.
+// What a closed-loop run adds (io/mission_log.hpp).
+const char* const kMissionFiles[] = {layout::kMissionEstimates, layout::kMissionEstimatesTum,
+                                     layout::kMissionCommands,  layout::kMissionEvents,
+                                     layout::kMissionPath,      layout::kMissionSummary};
 const char* const kWorldFiles[] = {"map.ply", "mesh.ply", "metadata.json",
                                    layout::kWorldMapDescriptorCache};
 
@@ -63,9 +68,9 @@ bool is_real_folder(const fs::directory_entry& entry) {
 std::optional<std::string> foreign_in_folder(const fs::path& folder, const std::string& name) {
     for (const fs::directory_entry& entry : fs::directory_iterator(folder)) {
         const std::string file = entry.path().filename().string();
-        const bool known = name == layout::kWorldDir
-                               ? is_one_of(file, kWorldFiles)
-                               : is_frame_file(entry.path()) || is_one_of(file, kFrameFolderFiles);
+        bool known = is_frame_file(entry.path()) || is_one_of(file, kFrameFolderFiles);
+        if (name == layout::kWorldDir) known = is_one_of(file, kWorldFiles);
+        if (name == layout::kMissionDir) known = is_one_of(file, kMissionFiles);
         if (!known || !is_regular(entry)) return name + "/" + file;
     }
     return std::nullopt;
@@ -75,7 +80,8 @@ std::optional<std::string> foreign_entry(const fs::path& directory) {
     for (const fs::directory_entry& entry : fs::directory_iterator(directory)) {
         const std::string name = entry.path().filename().string();
         if (is_one_of(name, kTopFiles) && is_regular(entry)) continue;
-        const bool folder = is_one_of(name, kFrameFolders) || name == layout::kWorldDir;
+        const bool folder = is_one_of(name, kFrameFolders) || name == layout::kWorldDir ||
+                            name == layout::kMissionDir;
         if (!folder || !is_real_folder(entry)) return name;
         if (auto foreign = foreign_in_folder(entry.path(), name)) return foreign;
     }

@@ -244,6 +244,14 @@ void Scenario::validate(std::string_view prefix) const {
     check_recording_estimate(estimate);
 }
 
+Scenario scenario_from_node(const io::ConfigNode& node, const std::string& prefix) {
+    if (!node.is_map()) io::detail::fail(node, prefix, "expected a map (a scenario)");
+    check_scenario_document(node);
+    Scenario scenario;
+    scenario_schema().apply(node, scenario, prefix);
+    return scenario;
+}
+
 Scenario load_scenario(const std::string& path) {
     Scenario scenario = apply_document(io::parse_yaml_file(path));
     const std::filesystem::path file(path);

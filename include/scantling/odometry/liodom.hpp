@@ -89,6 +89,10 @@ struct FrameReport {
     double rmse_m = 0.0;
     int num_degenerate = 0;
     double min_eigen_ratio = 0.0;  ///< of the registration's scaled information (degeneracy)
+    /// JᵀWJ of the registration at T_odom_sensor: the information of a left perturbation
+    /// exp(δ) · T_odom_sensor, δ = (ρ, ω) in the odom frame, for unit point-to-line noise
+    /// (divide by σ² for metres). Zero when the frame was not registered.
+    Matrix6d information = Matrix6d::Zero();
     std::size_t local_map_points = 0;
     double extract_ms = 0.0;  ///< wall time of the stages (not deterministic)
     double register_ms = 0.0;

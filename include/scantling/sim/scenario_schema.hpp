@@ -28,6 +28,11 @@ const io::ConfigSchema<Scenario>& scenario_schema();
 /// "<file>: line L: key 'sensors[1].columns': does not apply to type 'imu' ...".
 void check_scenario_document(const io::ConfigNode& root);
 
+/// A scenario from a parsed document or sub-document (a mission's `simulation:`), with both
+/// checks above; key paths in messages start with `prefix` ("simulation.dt_s"). Not validated
+/// as a whole (Scenario::validate); `name` and `base_directory` are left to the caller.
+Scenario scenario_from_node(const io::ConfigNode& node, const std::string& prefix = "");
+
 namespace detail {
 
 /// [0, max]: a size where 0 means the model's default, or a non-negative bounded value.

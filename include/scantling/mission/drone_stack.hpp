@@ -1,0 +1,132 @@
+#pragma once
+/// @file
+/// The drone's autonomy stack as one plain object (issue 13; SPEC §3, §4): what runs on the
+/// robot, fed with the same io/core types a recording gives and returning the velocity command
+/// for the vehicle. It never sees the simulator: the closed loop (closed_loop.hpp) feeds it
+/// from `sim`, a ROS node would feed it from topics, a replay from a recording.
+///
+/// Pipeline per measurement:
+///   IMU        → local EKF prediction (local_ekf.hpp), then the global EKF's prediction;
+///   LiDAR      → LiODOM (odometry/liodom.hpp) predicted by the EKF's own motion between
+///                sweeps (so a direction the hull leaves unobserved keeps the IMU's motion),
+///                its pose increment fused into the local EKF with the registration's
+///                information (JᵀWJ / odometry_sigma_m², taken to the body frame), and the
+///                sweep kept for the safety layer;
+///   range      → local EKF height above the floor; barometer → local EKF altitude;
+///   UWB        → global EKF (global_ekf.hpp).
+/// Per command tick: the global estimate → mission manager (control/mission_manager.hpp:
+/// VTP follower and position PIDs) → collision prevention and height keeping on the latest
+/// sweep (safety/, in the body frame of the estimate) → command. A command is never NaN: the
+/// manager replaces one with a hover, and so does this stack (with an event) after the safety
+/// layer.
+///
+/// Frames: world (the mission's), odom (the local EKF's: the levelled start pose), body.
+/// Thread-safety: not thread-safe; one stack per vehicle. Deterministic for a given input
+/// sequence (LiODOM runs single-threaded inside the loop).
+
+#include <Eigen/Geometry>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <scantling/control/mission_manager.hpp>
+#include <scantling/core/point_cloud.hpp>
+#include <scantling/io/recording.hpp>
+#include <scantling/localization/global_ekf.hpp>
+#include <scantling/localization/local_ekf.hpp>
+#include <scantling/odometry/liodom.hpp>
+#include <scantling/planning/waypoints.hpp>
+#include <scantling/safety/collision_prevention.hpp>
+#include <scantling/safety/height_keeping.hpp>
+
+namespace scantling::mission {
+
+struct DroneStackConfig {
+    odometry::LiodomConfig odometry{};
+    /// Point-to-line noise that turns LiODOM's JᵀWJ (unit noise) into 1/m², m, > 0. Larger
+    /// than the LiDAR's range noise (≈ 3 cm): neighbouring residuals share the map's errors.
+    double odometry_sigma_m = 0.1;
+    /// Floor of one increment's uncertainty, m, > 0: thousands of residuals make JᵀWJ claim
+    /// millimetres per sweep, but the map's own errors repeat from sweep to sweep. Applied to
+    /// the information's eigenvalues with rotations taken at `odometry_lever_m` (0.01 m at
+    /// 5 m: 2 mrad per sweep).
+    double odometry_min_sigma_m = 0.01;
+    double odometry_lever_m = 5.0;  ///< m per rad when comparing rotations with translations
+    localization::LocalEkfConfig local_ekf{};
+    /// 1σ of one barometer sample, m, > 0 (a flight controller's filtered altitude: 0.1 m of
+    /// noise plus the propellers' downwash).
+    double barometer_sigma_m = 0.3;
+    localization::GlobalEkfConfig global_ekf{};
+    bool collision_prevention = true;  ///< SPEC §3 on the latest sweep
+    safety::CollisionPreventionConfig collision{};
+    bool height_keeping = true;
+    safety::HeightKeepingConfig height{};
+    /// A sweep older than this gives the safety layer no data, s, > 0.
+    double max_sweep_age_s = 0.3;
+    /// The estimate is declared invalid when its horizontal position σ exceeds this, m, > 0.
+    double max_position_sigma_m = 2.0;
+    control::MissionManagerConfig manager{};
+    Eigen::Isometry3d T_body_lidar = Eigen::Isometry3d::Identity();  ///< LiDAR mount
+
+    /// Throws ConfigError naming "<prefix>.<field>".
+    void validate(std::string_view prefix = "stack") const;
+};
+
+/// What the stack did with a command tick (for the recording and the dashboard).
+struct StackCommand {
+    Eigen::Vector3d v_world_mps = Eigen::Vector3d::Zero();  ///< to the vehicle
+    double yaw_rate_radps = 0.0;
+    Eigen::Vector3d v_requested_world_mps = Eigen::Vector3d::Zero();  ///< the manager's
+    bool limited = false;  ///< the safety layer changed the request
+    std::optional<safety::CollisionPreventionResult> collision;
+    control::MissionState state = control::MissionState::kIdle;
+    std::vector<control::MissionEvent> events;
+};
+
+class DroneStack {
+  public:
+    /// `T_world_body_start`: where the robot starts (its odom frame is this pose, levelled).
+    /// ConfigError for a bad config or path, InputError for a non-finite start.
+    DroneStack(DroneStackConfig config, planning::WaypointPath path,
+               const Eigen::Isometry3d& T_world_body_start, double start_s = 0.0);
+
+    void add_imu(const io::ImuRecord& sample);
+    /// A sweep in the LiDAR frame, stamped at its start. Returns LiODOM's report.
+    odometry::FrameReport add_sweep(const PointCloud& sweep_lidar, double stamp_s);
+    void add_range(const io::RangeRecord& range);
+    void add_barometer(const io::BarometerRecord& altitude);
+    void add_uwb(const io::UwbRecord& range);
+
+    /// The command at `t_s` after applying the operator's commands.
+    StackCommand command(double t_s, std::span<const control::OperatorCommand> operator_commands);
+
+    /// The world estimate (global EKF output) at the last IMU sample.
+    localization::DroneState estimate() const { return global_.state(); }
+    bool estimate_valid() const;
+    const localization::LocalEkf& local_ekf() const { return local_; }
+    const localization::GlobalEkf& global_ekf() const { return global_; }
+    const control::MissionManager& manager() const { return manager_; }
+    const DroneStackConfig& config() const { return config_; }
+
+  private:
+    std::optional<Eigen::Isometry3d> odometry_prior(double t0_s, double t1_s) const;
+    void fuse_increment(const odometry::FrameReport& report, double stamp_s);
+    Eigen::Vector3d apply_safety(const Eigen::Vector3d& v_world_mps, double t_s,
+                                 StackCommand& out) const;
+
+    DroneStackConfig config_;
+    Eigen::Isometry3d T_world_odom_start_;
+    localization::LocalEkf local_;
+    localization::GlobalEkf global_;
+    odometry::LidarOdometry odometry_;
+    control::MissionManager manager_;
+    /// LiODOM's pose at the previous registered sweep, and the EKF's body pose there.
+    std::optional<Eigen::Isometry3d> T_lodom_lidar_previous_;
+    std::optional<double> previous_sweep_stamp_s_;
+    Eigen::Isometry3d T_odom_body_previous_sweep_ = Eigen::Isometry3d::Identity();
+    PointCloud latest_sweep_body_;
+    std::optional<double> latest_sweep_stamp_s_;
+};
+
+}  // namespace scantling::mission

@@ -1,0 +1,253 @@
+// The closed loop (closed_loop.hpp).
+#include <scantling/mission/closed_loop.hpp>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <variant>
+
+#include <scantling/core/error.hpp>
+#include <scantling/io/atomic_file.hpp>
+#include <scantling/io/mission_log.hpp>
+#include <scantling/io/tum.hpp>
+#include <scantling/sim/recording_writer.hpp>
+#include <scantling/sim/scenario_runner.hpp>
+#include <scantling/sim/simulator.hpp>
+
+#include "detail/loop_metrics.hpp"
+
+namespace scantling::mission {
+namespace {
+
+namespace layout = io::recording_layout;
+
+void write_text(const std::string& path, const std::string& text) {
+    io::write_file_atomically(path, [&](std::ostream& out) { out << text; });
+}
+
+bool is_frame(const sim::SensorReading& r) {
+    return std::holds_alternative<sim::LidarReading>(r.data);
+}
+
+/// One reading to the stack, as the io type a recording gives.
+void feed(DroneStack& stack, const sim::SensorReading& reading, detail::LoopMetrics& metrics) {
+    if (const auto* imu = std::get_if<sim::ImuSample>(&reading.data)) {
+        stack.add_imu({imu->stamp_s, imu->specific_force_mps2, imu->angular_rate_radps});
+    } else if (const auto* range = std::get_if<sim::RangeMeasurement>(&reading.data)) {
+        stack.add_range({range->stamp_s, range->valid, range->range_m});
+    } else if (const auto* baro = std::get_if<sim::BarometerSample>(&reading.data)) {
+        stack.add_barometer({baro->stamp_s, baro->altitude_m});
+    } else if (const auto* uwb = std::get_if<sim::UwbMeasurement>(&reading.data)) {
+        for (const sim::UwbRange& r : uwb->ranges) {
+            stack.add_uwb({uwb->stamp_s, r.anchor_id, r.range_m, r.valid, r.line_of_sight});
+        }
+    } else if (const auto* lidar = std::get_if<sim::LidarReading>(&reading.data)) {
+        stack.add_sweep(lidar->sweep, reading.stamp_s);
+        metrics.add_sweep(lidar->sweep);
+    }
+}
+
+std::string event_json(const control::MissionEvent& e) {
+    nlohmann::ordered_json j;
+    if (e.type == control::MissionEventType::kStateChanged) {
+        j["from"] = std::string(control::to_string(e.from));
+        j["to"] = std::string(control::to_string(e.to));
+    }
+    if (e.waypoint_index) j["waypoint"] = *e.waypoint_index;
+    if (e.home_leg) j["home_leg"] = true;
+    if (e.command) j["command"] = std::string(control::to_string(*e.command));
+    if (!e.reason.empty()) j["reason"] = e.reason;
+    return j.empty() ? "{}" : j.dump();
+}
+
+/// Everything the loop writes besides the simulator's streams.
+struct MissionFiles {
+    std::vector<io::EstimateRecord> estimates;
+    std::vector<io::CommandRecord> commands;
+    std::string events;
+    std::size_t num_events = 0;
+    bool limited = false;  ///< the safety layer's state at the previous tick
+
+    void add_event(double t_s, const std::string& type, const std::string& json) {
+        events += io::event_line(t_s, type, json);
+        ++num_events;
+    }
+};
+
+io::EstimateRecord estimate_record(const DroneStack& stack, double t_s) {
+    const localization::DroneState s = stack.estimate();
+    const auto& P = s.covariance;
+    return {.stamp_s = t_s,
+            .T_world_body = s.T_odom_body,
+            .v_world_mps = s.v_odom_mps,
+            .position_sigma_m = Eigen::Vector3d(std::sqrt(P(0, 0)), std::sqrt(P(1, 1)),
+                                                std::sqrt(P(2, 2))),
+            .yaw_sigma_rad = std::sqrt(P(5, 5)),
+            .valid = stack.estimate_valid()};
+}
+
+void log_command(MissionFiles& files, const StackCommand& c, double t_s) {
+    files.commands.push_back({.stamp_s = t_s,
+                              .v_world_mps = c.v_world_mps,
+                              .yaw_rate_radps = c.yaw_rate_radps,
+                              .v_requested_world_mps = c.v_requested_world_mps,
+                              .limited = c.limited});
+    for (const control::MissionEvent& e : c.events) {
+        files.add_event(e.t_s, std::string(control::to_string(e.type)), event_json(e));
+    }
+    if (c.limited != files.limited) {
+        nlohmann::ordered_json j;
+        if (c.collision) {
+            j["status"] = std::string(safety::to_string(c.collision->status));
+            if (c.collision->d_o_m) j["d_o_m"] = *c.collision->d_o_m;
+        }
+        files.add_event(t_s, c.limited ? "safety_limited" : "safety_released",
+                        j.empty() ? "{}" : j.dump());
+        files.limited = c.limited;
+    }
+}
+
+void log_operator(MissionFiles& files, std::span<const control::OperatorCommand> commands,
+                  double t_s) {
+    for (const control::OperatorCommand& c : commands) {
+        nlohmann::ordered_json j{{"command", std::string(control::to_string(c.type))}};
+        if (c.type == control::OperatorCommandType::kTakeOver) {
+            j["v_world_mps"] = {c.v_world_mps.x(), c.v_world_mps.y(), c.v_world_mps.z()};
+            j["yaw_rate_radps"] = c.yaw_rate_radps;
+        }
+        files.add_event(t_s, "operator", j.dump());
+    }
+}
+
+std::vector<io::PathPointRecord> path_records(const planning::WaypointPath& path) {
+    std::vector<io::PathPointRecord> records;
+    for (const planning::Waypoint& wp : path.waypoints) {
+        records.push_back({wp.p_world_m, wp.tolerance_m});
+    }
+    return records;
+}
+
+void write_mission_files(const sim::RecordingWriter& writer, const MissionScenario& scenario,
+                         const MissionFiles& files, const MissionResult& result) {
+    const std::filesystem::path dir =
+        std::filesystem::path(writer.staging_directory()) / layout::kMissionDir;
+    std::filesystem::create_directories(dir);
+    const auto path = [&dir](const char* name) { return (dir / name).string(); };
+    write_text(path(layout::kMissionEstimates), io::estimates_csv(files.estimates));
+    std::vector<io::StampedPose> poses;
+    for (const io::EstimateRecord& e : files.estimates) poses.push_back({e.stamp_s, e.T_world_body});
+    io::write_tum(path(layout::kMissionEstimatesTum), poses);
+    write_text(path(layout::kMissionCommands), io::commands_csv(files.commands));
+    write_text(path(layout::kMissionEvents), files.events);
+    write_text(path(layout::kMissionPath), io::intended_path_csv(path_records(scenario.path)));
+    write_text(path(layout::kMissionSummary), detail::summary_json(scenario, result));
+}
+
+bool ended(control::MissionState state) {
+    return state == control::MissionState::kCompleted || state == control::MissionState::kAborted;
+}
+
+sim::RecordingSummary recording_summary(const MissionScenario& m, const sim::Simulator& sim) {
+    sim::RecordingSummary summary{.scenario = m.name,
+                                  .description = m.description,
+                                  .world = std::string(sim::to_string(m.simulation.world.type)),
+                                  .duration_s = sim.now_s(),
+                                  .dt_s = m.simulation.dt_s,
+                                  .seed = m.simulation.seed,
+                                  .sensors = {}};
+    for (std::size_t i = 0; i < m.simulation.sensors.size(); ++i) {
+        summary.sensors.emplace_back(std::string(sim::to_string(m.simulation.sensors[i].type)),
+                                     sim.sensor_rate_hz(i));
+    }
+    return summary;
+}
+
+}  // namespace
+
+MissionResult run_mission(const MissionScenario& scenario, const std::string& directory,
+                          const MissionRunOptions& options) {
+    const auto wall_start = std::chrono::steady_clock::now();
+    scenario.validate();
+    sim::Scenario simulation = scenario.simulation;
+    simulation.parallel.num_threads = simulation.parallel.num_threads;  // ray casting only
+    sim::Simulator sim(simulation, scenario.T_world_body_start());
+    sim::RecordingWriter writer(directory, options.overwrite);
+    if (simulation.export_world.world) {
+        writer.write_world(sim.world(), {.map_spacing_m = simulation.export_world.map_spacing_m,
+                                         .seed = Rng(simulation.seed).split(100).next_u64()});
+    }
+    DroneStackConfig stack_config = scenario.stack;
+    // LiODOM parallelises its extraction and registration with results independent of the
+    // thread count (odometry/liodom.hpp); the loop itself stays sequential.
+    stack_config.odometry.set_num_threads(simulation.parallel.num_threads);
+    DroneStack stack(stack_config, scenario.path, scenario.T_world_body_start(), 0.0);
+    control::OperatorScript script(scenario.operator_script);
+    detail::LoopMetrics metrics(scenario.path, scenario.T_world_body_start().translation());
+    MissionFiles files;
+    std::optional<double> ended_at_s;
+    double next_progress_s = 0.0;
+    const double duration_s = simulation.duration_s;
+
+    sim::SimStep step = sim.start();
+    while (true) {
+        if (options.stop_requested && options.stop_requested()) {
+            throw sim::ScenarioInterrupted(fmt::format(
+                "interrupted at simulated t = {:.3f} s; nothing was written to {}", sim.now_s(),
+                directory));
+        }
+        const double t_s = sim.now_s();
+        writer.add_ground_truth(t_s, step.truth.T_world_body);
+        std::stable_partition(step.readings.begin(), step.readings.end(),
+                              [](const sim::SensorReading& r) { return !is_frame(r); });
+        for (const sim::SensorReading& reading : step.readings) {
+            writer.add(reading);
+            feed(stack, reading, metrics);
+        }
+        std::vector<control::OperatorCommand> commands = script.due(t_s);
+        if (sim.tick() == 0) commands.insert(commands.begin(), {control::OperatorCommandType::kStart});
+        log_operator(files, commands, t_s);
+        const StackCommand command = stack.command(t_s, commands);
+        log_command(files, command, t_s);
+        files.estimates.push_back(estimate_record(stack, t_s));
+        metrics.add_tick(step.truth, stack.estimate(), command, t_s);
+        if (options.progress && t_s >= next_progress_s) {
+            options.progress({t_s, duration_s, command.state});
+            next_progress_s += 1.0;
+        }
+        if (ended(command.state) && !ended_at_s) ended_at_s = t_s;
+        if (ended_at_s && t_s >= *ended_at_s + scenario.linger_s) break;
+        if (t_s >= duration_s - 1e-9) {
+            files.add_event(t_s, "timeout", fmt::format(R"({{"state":"{}"}})",
+                                                        control::to_string(command.state)));
+            break;
+        }
+        step = sim.step({.v_world_mps = command.v_world_mps,
+                         .yaw_rate_radps = command.yaw_rate_radps});
+    }
+    MissionResult result = metrics.result(stack.manager().state());
+    const localization::LocalEkfCounters& local = stack.local_ekf().counters();
+    result.increments_applied = local.increments_applied;
+    result.increments_rejected = local.increments_rejected;
+    result.ranges_applied = local.ranges_applied;
+    result.ranges_rejected = local.ranges_rejected;
+    result.uwb_applied = stack.global_ekf().counters().uwb_applied;
+    result.uwb_rejected = stack.global_ekf().counters().uwb_rejected;
+    result.directory = directory;
+    result.sim_time_s = sim.now_s();
+    result.events = files.num_events;
+    writer.finish(recording_summary(scenario, sim));
+    result.wall_time_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+    result.real_time_factor = result.sim_time_s / std::max(result.wall_time_s, 1e-9);
+    write_mission_files(writer, scenario, files, result);
+    writer.write_timing(result.wall_time_s, result.real_time_factor);
+    writer.commit();
+    return result;
+}
+
+}  // namespace scantling::mission

@@ -1,0 +1,210 @@
+// The drone's autonomy stack (drone_stack.hpp).
+#include <scantling/mission/drone_stack.hpp>
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+#include <string>
+
+#include <scantling/core/config_checks.hpp>
+#include <scantling/core/error.hpp>
+#include <scantling/core/se3.hpp>
+
+namespace scantling::mission {
+namespace {
+
+using namespace scantling::config_checks;
+
+double yaw_of(const Eigen::Matrix3d& R) { return std::atan2(R(1, 0), R(0, 0)); }
+
+/// The start pose without its roll and pitch: the odom frame of the local EKF.
+Eigen::Isometry3d levelled(const Eigen::Isometry3d& T_world_body) {
+    if (!T_world_body.matrix().allFinite()) {
+        throw InputError("drone stack: the start pose is not finite");
+    }
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.linear() = Eigen::AngleAxisd(yaw_of(T_world_body.linear()), Eigen::Vector3d::UnitZ())
+                     .toRotationMatrix();
+    T.translation() = T_world_body.translation();
+    return T;
+}
+
+PointCloud to_body(const PointCloud& sweep_lidar, const Eigen::Isometry3d& T_body_lidar) {
+    PointCloud cloud;
+    cloud.stamp_s = sweep_lidar.stamp_s;
+    cloud.points.reserve(sweep_lidar.points.size());
+    for (const Eigen::Vector3d& p : sweep_lidar.points) {
+        if (p.allFinite()) cloud.points.push_back(T_body_lidar * p);
+    }
+    return cloud;
+}
+
+/// `information` with its eigenvalues capped at 1/σ_min², rotations compared at `lever_m`
+/// metres per radian (drone_stack.hpp, odometry_min_sigma_m).
+Matrix6d capped(const Matrix6d& information, double min_sigma_m, double lever_m) {
+    Vector6d scale;
+    scale << 1.0, 1.0, 1.0, lever_m, lever_m, lever_m;  // ξ_scaled = S ξ
+    const Matrix6d scaled = scale.cwiseInverse().asDiagonal() * information *
+                            scale.cwiseInverse().asDiagonal();
+    const Eigen::SelfAdjointEigenSolver<Matrix6d> eigen(0.5 * (scaled + scaled.transpose()));
+    const Vector6d values =
+        eigen.eigenvalues().cwiseMax(0.0).cwiseMin(1.0 / (min_sigma_m * min_sigma_m));
+    const Matrix6d capped_scaled =
+        eigen.eigenvectors() * values.asDiagonal() * eigen.eigenvectors().transpose();
+    return scale.asDiagonal() * capped_scaled * scale.asDiagonal();
+}
+
+bool registered(odometry::FrameStatus status) {
+    return status == odometry::FrameStatus::kOk || status == odometry::FrameStatus::kDegenerate;
+}
+
+}  // namespace
+
+void DroneStackConfig::validate(std::string_view prefix) const {
+    odometry.validate(std::string(prefix) + ".odometry");
+    require_positive(odometry_sigma_m, prefix, "odometry_sigma_m");
+    require_positive(odometry_min_sigma_m, prefix, "odometry_min_sigma_m");
+    require_positive(odometry_lever_m, prefix, "odometry_lever_m");
+    local_ekf.validate(std::string(prefix) + ".local_ekf");
+    require_positive(barometer_sigma_m, prefix, "barometer_sigma_m");
+    global_ekf.validate(std::string(prefix) + ".global_ekf");
+    collision.validate(std::string(prefix) + ".collision");
+    height.validate(std::string(prefix) + ".height");
+    require_positive(max_sweep_age_s, prefix, "max_sweep_age_s");
+    require_positive(max_position_sigma_m, prefix, "max_position_sigma_m");
+    manager.validate(std::string(prefix) + ".manager");
+    require(T_body_lidar.matrix().allFinite(), prefix, "T_body_lidar", 0.0, "finite");
+}
+
+DroneStack::DroneStack(DroneStackConfig config, planning::WaypointPath path,
+                       const Eigen::Isometry3d& T_world_body_start, double start_s)
+    : config_((config.validate(), std::move(config))),
+      T_world_odom_start_(levelled(T_world_body_start)),
+      local_(config_.local_ekf),
+      global_(config_.global_ekf, T_world_odom_start_),
+      odometry_(config_.odometry,
+                T_world_odom_start_.inverse() * T_world_body_start * config_.T_body_lidar),
+      manager_(std::move(path), config_.manager) {
+    local_.initialize(start_s, T_world_odom_start_.inverse() * T_world_body_start);
+    global_.add_local(local_.state());
+    odometry_.set_motion_prior(
+        [this](double t0_s, double t1_s) { return odometry_prior(t0_s, t1_s); });
+}
+
+void DroneStack::add_imu(const io::ImuRecord& sample) {
+    local_.add_imu(sample);
+    global_.add_local(local_.state());
+}
+
+std::optional<Eigen::Isometry3d> DroneStack::odometry_prior(double t0_s, double t1_s) const {
+    // The EKF's motion of the LiDAR since the previous sweep (the filter is at t1 already).
+    if (!previous_sweep_stamp_s_ || std::abs(*previous_sweep_stamp_s_ - t0_s) > 1e-6 ||
+        std::abs(local_.stamp_s() - t1_s) > 0.02) {
+        return std::nullopt;
+    }
+    const Eigen::Isometry3d& T_bl = config_.T_body_lidar;
+    return (T_odom_body_previous_sweep_ * T_bl).inverse() * (local_.state().T_odom_body * T_bl);
+}
+
+odometry::FrameReport DroneStack::add_sweep(const PointCloud& sweep_lidar, double stamp_s) {
+    PointCloud sweep = sweep_lidar;
+    sweep.stamp_s = stamp_s;
+    const odometry::FrameReport report = odometry_.process(sweep);
+    fuse_increment(report, stamp_s);
+    latest_sweep_body_ = to_body(sweep_lidar, config_.T_body_lidar);
+    latest_sweep_stamp_s_ = stamp_s;
+    return report;
+}
+
+void DroneStack::fuse_increment(const odometry::FrameReport& report, double stamp_s) {
+    const bool chained = registered(report.status) && T_lodom_lidar_previous_.has_value();
+    if (chained) {
+        const Eigen::Isometry3d& T_bl = config_.T_body_lidar;
+        const Eigen::Isometry3d T_l0_l1 = T_lodom_lidar_previous_->inverse() * report.T_odom_sensor;
+        // LiODOM's information is of exp(δ) · T_lodom_lidar1 (odom frame); the increment's
+        // is of exp(ε) · T_b0_b1 (body0 frame): δ = Ad(T_lodom_b0) ε.
+        const Matrix6d B = se3_adjoint(*T_lodom_lidar_previous_ * T_bl.inverse());
+        const double scale = 1.0 / (config_.odometry_sigma_m * config_.odometry_sigma_m);
+        localization::PoseIncrement increment{
+            .start_stamp_s = *previous_sweep_stamp_s_,
+            .end_stamp_s = stamp_s,
+            .T_body0_body1 = T_bl * T_l0_l1 * T_bl.inverse(),
+            .information = capped(scale * B.transpose() * report.information * B,
+                                  config_.odometry_min_sigma_m, config_.odometry_lever_m)};
+        local_.update_increment(increment);
+    } else {
+        local_.clone_pose(stamp_s);  // start (or restart) the chain of increments here
+    }
+    const bool usable = registered(report.status) || report.status == odometry::FrameStatus::kFirst;
+    T_lodom_lidar_previous_ = usable ? std::optional(report.T_odom_sensor) : std::nullopt;
+    previous_sweep_stamp_s_ = stamp_s;
+    T_odom_body_previous_sweep_ = local_.state().T_odom_body;
+}
+
+void DroneStack::add_range(const io::RangeRecord& range) { local_.update_range(range); }
+
+void DroneStack::add_barometer(const io::BarometerRecord& altitude) {
+    local_.update_barometer({.stamp_s = altitude.stamp_s,
+                             .altitude_m = altitude.altitude_m,
+                             .sigma_m = config_.barometer_sigma_m});
+}
+
+void DroneStack::add_uwb(const io::UwbRecord& range) { global_.update_uwb(range); }
+
+bool DroneStack::estimate_valid() const {
+    const localization::DroneState state = global_.state();
+    const double horizontal_variance = state.covariance(0, 0) + state.covariance(1, 1);
+    return local_.initialized() && state.T_odom_body.matrix().allFinite() &&
+           std::isfinite(horizontal_variance) &&
+           horizontal_variance <= config_.max_position_sigma_m * config_.max_position_sigma_m;
+}
+
+StackCommand DroneStack::command(double t_s,
+                                 std::span<const control::OperatorCommand> operator_commands) {
+    const localization::DroneState state = global_.state();
+    const control::EstimatedState estimate{.p_world_m = state.T_odom_body.translation(),
+                                           .yaw_rad = yaw_of(state.T_odom_body.linear()),
+                                           .v_world_mps = state.v_odom_mps,
+                                           .valid = estimate_valid()};
+    control::MissionTick tick = manager_.update(estimate, t_s, operator_commands);
+    StackCommand out{.v_world_mps = tick.v_cmd_world_mps,
+                     .yaw_rate_radps = tick.yaw_rate_cmd_radps,
+                     .v_requested_world_mps = tick.v_cmd_world_mps,
+                     .limited = false,
+                     .collision = std::nullopt,
+                     .state = tick.state,
+                     .events = std::move(tick.events)};
+    if (estimate.valid) out.v_world_mps = apply_safety(out.v_requested_world_mps, t_s, out);
+    out.limited = (out.v_world_mps - out.v_requested_world_mps).norm() > 1e-9;
+    if (!out.v_world_mps.allFinite() || !std::isfinite(out.yaw_rate_radps)) {
+        out.events.push_back({.type = control::MissionEventType::kCommandReplaced,
+                              .t_s = t_s,
+                              .from = tick.state,
+                              .to = tick.state,
+                              .reason = "the safety layer gave a non-finite command: hover"});
+        out.v_world_mps.setZero();
+        out.yaw_rate_radps = 0.0;
+    }
+    return out;
+}
+
+Eigen::Vector3d DroneStack::apply_safety(const Eigen::Vector3d& v_world_mps, double t_s,
+                                         StackCommand& out) const {
+    const bool fresh =
+        latest_sweep_stamp_s_ && t_s - *latest_sweep_stamp_s_ <= config_.max_sweep_age_s;
+    if (!fresh) return v_world_mps;
+    const Eigen::Matrix3d R_world_body = global_.state().T_odom_body.linear();
+    Eigen::Vector3d v = v_world_mps;
+    if (config_.collision_prevention) {
+        out.collision = safety::prevent_collision(R_world_body.transpose() * v, latest_sweep_body_,
+                                                  config_.collision);
+        v = R_world_body * out.collision->v_cmd_body_mps;
+    }
+    if (config_.height_keeping) {
+        const safety::VerticalClearance clearance =
+            safety::clearance_from_cloud(latest_sweep_body_, config_.height);
+        v.z() = safety::keep_height(v.z(), clearance, config_.height).v_z_cmd_mps;
+    }
+    return v;
+}
+
+}  // namespace scantling::mission
