@@ -85,8 +85,8 @@ io::EstimateRecord estimate_record(const DroneStack& stack, double t_s) {
     return {.stamp_s = t_s,
             .T_world_body = s.T_odom_body,
             .v_world_mps = s.v_odom_mps,
-            .position_sigma_m = Eigen::Vector3d(std::sqrt(P(0, 0)), std::sqrt(P(1, 1)),
-                                                std::sqrt(P(2, 2))),
+            .position_sigma_m =
+                Eigen::Vector3d(std::sqrt(P(0, 0)), std::sqrt(P(1, 1)), std::sqrt(P(2, 2))),
             .yaw_sigma_rad = std::sqrt(P(5, 5)),
             .valid = stack.estimate_valid()};
 }
@@ -140,7 +140,8 @@ void write_mission_files(const sim::RecordingWriter& writer, const MissionScenar
     const auto path = [&dir](const char* name) { return (dir / name).string(); };
     write_text(path(layout::kMissionEstimates), io::estimates_csv(files.estimates));
     std::vector<io::StampedPose> poses;
-    for (const io::EstimateRecord& e : files.estimates) poses.push_back({e.stamp_s, e.T_world_body});
+    for (const io::EstimateRecord& e : files.estimates)
+        poses.push_back({e.stamp_s, e.T_world_body});
     io::write_tum(path(layout::kMissionEstimatesTum), poses);
     write_text(path(layout::kMissionCommands), io::commands_csv(files.commands));
     write_text(path(layout::kMissionEvents), files.events);
@@ -196,9 +197,9 @@ MissionResult run_mission(const MissionScenario& scenario, const std::string& di
     sim::SimStep step = sim.start();
     while (true) {
         if (options.stop_requested && options.stop_requested()) {
-            throw sim::ScenarioInterrupted(fmt::format(
-                "interrupted at simulated t = {:.3f} s; nothing was written to {}", sim.now_s(),
-                directory));
+            throw sim::ScenarioInterrupted(
+                fmt::format("interrupted at simulated t = {:.3f} s; nothing was written to {}",
+                            sim.now_s(), directory));
         }
         const double t_s = sim.now_s();
         writer.add_ground_truth(t_s, step.truth.T_world_body);
@@ -209,7 +210,8 @@ MissionResult run_mission(const MissionScenario& scenario, const std::string& di
             feed(stack, reading, metrics);
         }
         std::vector<control::OperatorCommand> commands = script.due(t_s);
-        if (sim.tick() == 0) commands.insert(commands.begin(), {control::OperatorCommandType::kStart});
+        if (sim.tick() == 0)
+            commands.insert(commands.begin(), {control::OperatorCommandType::kStart});
         log_operator(files, commands, t_s);
         const StackCommand command = stack.command(t_s, commands);
         log_command(files, command, t_s);
@@ -222,12 +224,12 @@ MissionResult run_mission(const MissionScenario& scenario, const std::string& di
         if (ended(command.state) && !ended_at_s) ended_at_s = t_s;
         if (ended_at_s && t_s >= *ended_at_s + scenario.linger_s) break;
         if (t_s >= duration_s - 1e-9) {
-            files.add_event(t_s, "timeout", fmt::format(R"({{"state":"{}"}})",
-                                                        control::to_string(command.state)));
+            files.add_event(t_s, "timeout",
+                            fmt::format(R"({{"state":"{}"}})", control::to_string(command.state)));
             break;
         }
-        step = sim.step({.v_world_mps = command.v_world_mps,
-                         .yaw_rate_radps = command.yaw_rate_radps});
+        step = sim.step(
+            {.v_world_mps = command.v_world_mps, .yaw_rate_radps = command.yaw_rate_radps});
     }
     MissionResult result = metrics.result(stack.manager().state());
     const localization::LocalEkfCounters& local = stack.local_ekf().counters();

@@ -43,8 +43,8 @@ PointCloud to_body(const PointCloud& sweep_lidar, const Eigen::Isometry3d& T_bod
 Matrix6d capped(const Matrix6d& information, double min_sigma_m, double lever_m) {
     Vector6d scale;
     scale << 1.0, 1.0, 1.0, lever_m, lever_m, lever_m;  // ξ_scaled = S ξ
-    const Matrix6d scaled = scale.cwiseInverse().asDiagonal() * information *
-                            scale.cwiseInverse().asDiagonal();
+    const Matrix6d scaled =
+        scale.cwiseInverse().asDiagonal() * information * scale.cwiseInverse().asDiagonal();
     const Eigen::SelfAdjointEigenSolver<Matrix6d> eigen(0.5 * (scaled + scaled.transpose()));
     const Vector6d values =
         eigen.eigenvalues().cwiseMax(0.0).cwiseMin(1.0 / (min_sigma_m * min_sigma_m));

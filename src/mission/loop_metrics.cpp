@@ -32,8 +32,7 @@ double distance_to_polyline(const Eigen::Vector3d& p,
     return best;
 }
 
-LoopMetrics::LoopMetrics(const planning::WaypointPath& path,
-                         const Eigen::Vector3d& p_start_world_m)
+LoopMetrics::LoopMetrics(const planning::WaypointPath& path, const Eigen::Vector3d& p_start_world_m)
     : polyline_{p_start_world_m}, num_waypoints_(path.waypoints.size()) {
     for (const planning::Waypoint& wp : path.waypoints) polyline_.push_back(wp.p_world_m);
 }
@@ -45,9 +44,8 @@ void LoopMetrics::add_sweep(const PointCloud& sweep_sensor) {
     }
 }
 
-void LoopMetrics::add_tick(const sim::MotionState& truth,
-                           const localization::DroneState& estimate, const StackCommand& command,
-                           double t_s) {
+void LoopMetrics::add_tick(const sim::MotionState& truth, const localization::DroneState& estimate,
+                           const StackCommand& command, double t_s) {
     const Eigen::Vector3d p = truth.T_world_body.translation();
     const Eigen::Vector3d error = estimate.T_odom_body.translation() - p;
     error_sq_sum_ += error.squaredNorm();
@@ -104,32 +102,31 @@ MissionResult LoopMetrics::result(control::MissionState final_state) const {
 }
 
 std::string summary_json(const MissionScenario& scenario, const MissionResult& r) {
-    nlohmann::ordered_json j{
-        {"scenario", scenario.name},
-        {"final_state", std::string(control::to_string(r.final_state))},
-        {"completed", r.completed},
-        {"mission_time_s", r.mission_time_s},
-        {"sim_time_s", r.sim_time_s},
-        {"path_deviation_mean_m", r.path_deviation_mean_m},
-        {"path_deviation_max_m", r.path_deviation_max_m},
-        {"position_error_rms_m", r.position_error_rms_m},
-        {"position_error_max_m", r.position_error_max_m},
-        {"final_position_error_m", r.final_position_error_m},
-        {"yaw_error_rms_rad", r.yaw_error_rms_rad},
-        {"position_nees_mean", r.position_nees_mean},
-        {"path_length_m", r.path_length_m},
-        {"waypoints_reached", r.waypoints_reached},
-        {"waypoints", r.waypoints},
-        {"safety_interventions", r.safety_interventions},
-        {"min_obstacle_distance_m", r.min_obstacle_distance_m},
-        {"lidar_sweeps", r.lidar_sweeps},
-        {"events", r.events},
-        {"increments_applied", r.increments_applied},
-        {"increments_rejected", r.increments_rejected},
-        {"ranges_applied", r.ranges_applied},
-        {"ranges_rejected", r.ranges_rejected},
-        {"uwb_applied", r.uwb_applied},
-        {"uwb_rejected", r.uwb_rejected}};
+    nlohmann::ordered_json j{{"scenario", scenario.name},
+                             {"final_state", std::string(control::to_string(r.final_state))},
+                             {"completed", r.completed},
+                             {"mission_time_s", r.mission_time_s},
+                             {"sim_time_s", r.sim_time_s},
+                             {"path_deviation_mean_m", r.path_deviation_mean_m},
+                             {"path_deviation_max_m", r.path_deviation_max_m},
+                             {"position_error_rms_m", r.position_error_rms_m},
+                             {"position_error_max_m", r.position_error_max_m},
+                             {"final_position_error_m", r.final_position_error_m},
+                             {"yaw_error_rms_rad", r.yaw_error_rms_rad},
+                             {"position_nees_mean", r.position_nees_mean},
+                             {"path_length_m", r.path_length_m},
+                             {"waypoints_reached", r.waypoints_reached},
+                             {"waypoints", r.waypoints},
+                             {"safety_interventions", r.safety_interventions},
+                             {"min_obstacle_distance_m", r.min_obstacle_distance_m},
+                             {"lidar_sweeps", r.lidar_sweeps},
+                             {"events", r.events},
+                             {"increments_applied", r.increments_applied},
+                             {"increments_rejected", r.increments_rejected},
+                             {"ranges_applied", r.ranges_applied},
+                             {"ranges_rejected", r.ranges_rejected},
+                             {"uwb_applied", r.uwb_applied},
+                             {"uwb_rejected", r.uwb_rejected}};
     return j.dump(2) + "\n";
 }
 

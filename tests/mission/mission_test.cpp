@@ -55,8 +55,8 @@ fs::path temp_dir(const std::string& name) {
 }
 
 TEST(MissionScenario, ReadsTheDefaultJobAndCalibratesTheStack) {
-    const MissionScenario m =
-        load_mission_scenario(std::string(SCANTLING_SOURCE_DIR) + "/scenarios/hull_sweep_closed_loop.yaml");
+    const MissionScenario m = load_mission_scenario(std::string(SCANTLING_SOURCE_DIR) +
+                                                    "/scenarios/hull_sweep_closed_loop.yaml");
     EXPECT_EQ(m.name, "hull_sweep_closed_loop");
     EXPECT_EQ(m.path.waypoints.size(), 8u);  // 4 lines over 3 m, both ends
     EXPECT_NEAR(m.stack.T_body_lidar.translation().z(), 0.1, 1e-12);
@@ -97,7 +97,8 @@ TEST(MissionLog, RoundTrips) {
     };
     write(io::recording_layout::kMissionEstimates, io::estimates_csv(std::vector{e}));
     write(io::recording_layout::kMissionCommands, io::commands_csv(std::vector{c}));
-    write(io::recording_layout::kMissionEvents, io::event_line(0.5, "operator", R"({"command":"pause"})"));
+    write(io::recording_layout::kMissionEvents,
+          io::event_line(0.5, "operator", R"({"command":"pause"})"));
     write(io::recording_layout::kMissionPath,
           io::intended_path_csv(std::vector{io::PathPointRecord{Eigen::Vector3d(4, 5, 6), 0.2}}));
     const auto log = io::read_mission_log(dir.string());
@@ -133,7 +134,8 @@ TEST(ClosedLoop, FliesToARecordedPointOnItsOwnEstimate) {
     EXPECT_EQ(log->estimates.size(), recording.ground_truth().size());
     for (const io::CommandRecord& c : log->commands) ASSERT_TRUE(c.v_world_mps.allFinite());
     bool aborted = false;
-    for (const io::EventRecord& e : log->events) aborted |= e.json.find("\"abort\"") != std::string::npos;
+    for (const io::EventRecord& e : log->events)
+        aborted |= e.json.find("\"abort\"") != std::string::npos;
     EXPECT_TRUE(aborted);
     fs::remove_all(dir);
 }
