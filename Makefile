@@ -38,7 +38,7 @@ ODOMETRY_ARGS ?= --config config/odometry/examples/hull_side_vio.yaml --prior vi
 # collision prevention, in a 5 m/s wind with gusts; it prints the path deviation, the estimate's
 # error against the ground truth and the mission's figures. The recording holds the ground
 # truth, every sensor, the estimates, commands and events (io/mission_log.hpp).
-MISSION ?= scenarios/hull_sweep_closed_loop.yaml
+MISSION ?= scenarios/missions/hull_sweep_closed_loop.yaml
 MISSION_OUT ?= $(BUILD_DIR)/recordings/$(basename $(notdir $(MISSION)))
 run: build-app
 	@start=$$(date +%s); \
