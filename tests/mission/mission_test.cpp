@@ -55,8 +55,8 @@ fs::path temp_dir(const std::string& name) {
 }
 
 TEST(MissionScenario, ReadsTheDefaultJobAndCalibratesTheStack) {
-    const MissionScenario m = load_mission_scenario(std::string(SCANTLING_SOURCE_DIR) +
-                                                    "/scenarios/missions/hull_sweep_closed_loop.yaml");
+    const MissionScenario m = load_mission_scenario(
+        std::string(SCANTLING_SOURCE_DIR) + "/scenarios/missions/hull_sweep_closed_loop.yaml");
     EXPECT_EQ(m.name, "hull_sweep_closed_loop");
     EXPECT_EQ(m.path.waypoints.size(), 8u);  // 4 lines over 3 m, both ends
     EXPECT_NEAR(m.stack.T_body_lidar.translation().z(), 0.1, 1e-12);
