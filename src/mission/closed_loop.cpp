@@ -175,7 +175,6 @@ MissionResult run_mission(const MissionScenario& scenario, const std::string& di
     const auto wall_start = std::chrono::steady_clock::now();
     scenario.validate();
     sim::Scenario simulation = scenario.simulation;
-    simulation.parallel.num_threads = simulation.parallel.num_threads;  // ray casting only
     sim::Simulator sim(simulation, scenario.T_world_body_start());
     sim::RecordingWriter writer(directory, options.overwrite);
     if (simulation.export_world.world) {

@@ -14,7 +14,7 @@ namespace {
 
 using namespace scantling::config_checks;
 
-double yaw_of(const Eigen::Matrix3d& R) { return std::atan2(R(1, 0), R(0, 0)); }
+double yaw_of(const Eigen::Matrix3d& R) { return euler_zyx_from_rotation(R).z(); }
 
 /// The start pose without its roll and pitch: the odom frame of the local EKF.
 Eigen::Isometry3d levelled(const Eigen::Isometry3d& T_world_body) {
@@ -72,7 +72,9 @@ void DroneStackConfig::validate(std::string_view prefix) const {
     require_positive(max_sweep_age_s, prefix, "max_sweep_age_s");
     require_positive(max_position_sigma_m, prefix, "max_position_sigma_m");
     manager.validate(std::string(prefix) + ".manager");
-    require(T_body_lidar.matrix().allFinite(), prefix, "T_body_lidar", 0.0, "finite");
+    if (!T_body_lidar.matrix().allFinite()) {
+        throw ConfigError(std::string(prefix) + ".T_body_lidar is not finite");
+    }
 }
 
 DroneStack::DroneStack(DroneStackConfig config, planning::WaypointPath path,

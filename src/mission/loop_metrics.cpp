@@ -5,6 +5,9 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include <scantling/control/position_controller.hpp>
+#include <scantling/core/se3.hpp>
+
 namespace scantling::mission::detail {
 namespace {
 
@@ -16,9 +19,7 @@ double segment_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
     return (p - (a + t * ab)).norm();
 }
 
-double yaw_of(const Eigen::Matrix3d& R) { return std::atan2(R(1, 0), R(0, 0)); }
-
-double wrapped(double angle_rad) { return std::remainder(angle_rad, 2.0 * M_PI); }
+double yaw_of(const Eigen::Matrix3d& R) { return euler_zyx_from_rotation(R).z(); }
 
 }  // namespace
 
@@ -51,8 +52,8 @@ void LoopMetrics::add_tick(const sim::MotionState& truth, const localization::Dr
     error_sq_sum_ += error.squaredNorm();
     error_max_m_ = std::max(error_max_m_, error.norm());
     final_error_m_ = error.norm();
-    const double yaw_error =
-        wrapped(yaw_of(estimate.T_odom_body.linear()) - yaw_of(truth.T_world_body.linear()));
+    const double yaw_error = control::wrap_angle_rad(yaw_of(estimate.T_odom_body.linear()) -
+                                                     yaw_of(truth.T_world_body.linear()));
     yaw_sq_sum_ += yaw_error * yaw_error;
     const Eigen::Matrix3d P = estimate.covariance.topLeftCorner<3, 3>();
     if (P.allFinite() && P.determinant() > 0.0) {
