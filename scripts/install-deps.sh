@@ -13,6 +13,8 @@ packages=(
   libassimp-dev libembree-dev libceres-dev liboctomap-dev zlib1g-dev libpng-dev
   # make fuzz: clang with libFuzzer and the ASan/UBSan runtimes (libclang_rt.fuzzer-x86_64.a)
   clang-14 libclang-rt-14-dev
+  # plots of the experiments (scripts/d52-experiments.sh; docs/results.md)
+  gnuplot-nox
 )
 if [[ "${1:-}" == "--bench" ]]; then
   # Open3D for the in-process baselines; robin-map for KISS-ICP built from ../shared/baselines

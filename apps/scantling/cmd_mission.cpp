@@ -1,5 +1,8 @@
-// `scantling mission SCENARIO.yaml --out DIR [--seed N] [--force]`: one closed-loop run.
+// `scantling mission SCENARIO.yaml --out DIR [--seed N] [--force] [--set KEY=VALUE]...`: one
+// closed-loop run.
 #include <fmt/format.h>
+
+#include <algorithm>
 
 #include <cstdio>
 #include <ostream>
@@ -37,6 +40,14 @@ std::string summary_text(const mission::MissionScenario& m, const mission::Missi
         "{:.2f} deg\n",
         r.position_error_rms_m, r.position_error_max_m, r.final_position_error_m,
         r.yaw_error_rms_rad * 180.0 / M_PI);
+    if (r.coverage) {
+        const perception::CoverageResult& c = *r.coverage;
+        text +=
+            fmt::format("camera_coverage: {:.1f} % of the rectangle ({:.2f} m2 seen), {} holes{}\n",
+                        100.0 * c.covered_fraction, c.covered_area_m2, c.holes.size(),
+                        c.holes.empty() ? std::string()
+                                        : fmt::format(", largest {:.2f} m2", c.holes[0].area_m2));
+    }
     text += fmt::format("estimate_nees: {:.2f} (3 when consistent)\n", r.position_nees_mean);
     text += fmt::format("path_length: {:.1f} m\n", r.path_length_m);
     text += fmt::format("safety_interventions: {} ticks, nearest return {:.2f} m\n",
@@ -44,11 +55,24 @@ std::string summary_text(const mission::MissionScenario& m, const mission::Missi
     text += fmt::format("events: {}\nsweeps: {}\n", r.events, r.lidar_sweeps);
     text += fmt::format(
         "fused: lidar increments {} (refused {}), heights {} (refused {}), uwb "
-        "ranges {} (refused {})\n",
+        "ranges {} (refused {}, re-acquired {} times)\n",
         r.increments_applied, r.increments_rejected, r.ranges_applied, r.ranges_rejected,
-        r.uwb_applied, r.uwb_rejected);
+        r.uwb_applied, r.uwb_rejected, r.uwb_reacquisitions);
+    text += fmt::format("odometry: {} sweeps registered ({} degenerate), {} not registered\n",
+                        r.odometry_registered, r.odometry_degenerate, r.odometry_unregistered);
+    if (r.inputs_rejected > 0) text += fmt::format("inputs_rejected: {}\n", r.inputs_rejected);
     text += fmt::format("wall_time: {:.1f} s\nreal_time_factor: {:.1f}x\n", r.wall_time_s,
                         r.real_time_factor);
+    const mission::LoopTiming& t = r.timing;
+    const double total = std::max(r.wall_time_s, 1e-9);
+    const auto share = [total](double s) { return 100.0 * s / total; };
+    text += fmt::format(
+        "loop_time: simulate {:.1f} s ({:.0f} %), record {:.1f} s ({:.0f} %), odometry {:.1f} s "
+        "({:.0f} %), estimators {:.1f} s ({:.0f} %), command {:.1f} s ({:.0f} %), log {:.1f} s "
+        "({:.0f} %)\n",
+        t.simulate_s, share(t.simulate_s), t.record_s, share(t.record_s), t.odometry_s,
+        share(t.odometry_s), t.estimators_s, share(t.estimators_s), t.command_s, share(t.command_s),
+        t.log_s, share(t.log_s));
     return text;
 }
 
@@ -57,7 +81,8 @@ std::string summary_text(const mission::MissionScenario& m, const mission::Missi
 void run_mission(const MissionOptions& options, std::ostream& out) {
     if (options.out.empty()) throw ConfigError("--out is required");
     io::ensure_output_distinct(options.out, {options.scenario});
-    mission::MissionScenario scenario = mission::load_mission_scenario(options.scenario);
+    mission::MissionScenario scenario =
+        mission::load_mission_scenario(options.scenario, options.overrides);
     if (options.seed) scenario.simulation.seed = *options.seed;
     if (options.num_threads != 0) scenario.simulation.parallel.num_threads = options.num_threads;
     const InterruptScope interrupt;

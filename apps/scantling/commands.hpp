@@ -41,6 +41,7 @@ struct MissionOptions {
     bool force = false;                 ///< replace a recording folder once the new one is complete
     bool progress = true;               ///< progress line on stderr
     int num_threads = 0;                ///< ray casting threads; 0 = the scenario's setting
+    std::vector<std::string> overrides;  ///< --set KEY=VALUE, applied before parsing
 };
 
 struct RegisterOptions {

@@ -154,6 +154,10 @@ void define_mission(CLI::App& app, CommandLine& cl) {
             ->transform(whole_number_in(0, std::numeric_limits<std::uint64_t>::max()));
     cmd->add_flag("--force", cl.mission.force,
                   "Replace an existing recording, only once the new one is complete");
+    cmd->add_option("--set", cl.mission.overrides,
+                    "Override a scenario key, e.g. stack.manager.tracking.use_vtp=false "
+                    "(repeatable; VALUE in YAML)")
+        ->type_name("KEY=VALUE");
     cmd->add_flag("--no-progress", cl.no_progress, "No progress line on stderr");
 }
 

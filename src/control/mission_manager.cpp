@@ -289,9 +289,9 @@ std::string_view to_string(OperatorCommandType command) {
 }
 
 std::string_view to_string(MissionEventType type) {
-    static constexpr std::array<std::string_view, 5> kNames = {
-        "state_changed", "waypoint_reached", "command_refused", "estimate_invalid",
-        "command_replaced"};
+    static constexpr std::array<std::string_view, 8> kNames = {
+        "state_changed",    "waypoint_reached", "command_refused", "estimate_invalid",
+        "command_replaced", "sensor_lost",      "sensor_restored", "input_rejected"};
     return kNames.at(static_cast<std::size_t>(type));
 }
 

@@ -34,6 +34,20 @@ void require_finite(double value, std::string_view what) {
 
 }  // namespace
 
+Eigen::Vector3d clamp_along_error(const Eigen::Vector3d& v_mps, const Eigen::Vector3d& error_m,
+                                  double max_speed_mps) {
+    const double error_norm = error_m.norm();
+    if (!(error_norm > 1e-9)) return v_mps * (max_speed_mps / v_mps.norm());
+    const Eigen::Vector3d along = error_m / error_norm;
+    const Eigen::Vector3d v_along = along * along.dot(v_mps);
+    const Eigen::Vector3d v_across = v_mps - v_along;
+    const double across = v_across.norm();
+    if (across >= max_speed_mps) return v_across * (max_speed_mps / across);
+    const double room = std::sqrt(max_speed_mps * max_speed_mps - across * across);
+    const double along_speed = v_along.norm();
+    return v_across + (along_speed > room ? v_along * (room / along_speed) : v_along);
+}
+
 void PositionControllerConfig::validate(std::string_view prefix) const {
     using namespace config_checks;
     require_non_negative(kp_per_s, prefix, "kp_per_s");
@@ -84,9 +98,9 @@ VelocityCommand PositionController::update(const Eigen::Vector3d& p_world_m, dou
         pid.update(p_target_world_m[i], p_world_m[i], dt_s);
         command.v_cmd_world_mps[i] = pid.last_terms().unsaturated;
     }
-    const double speed = command.v_cmd_world_mps.norm();
-    if (speed > config_.max_speed_mps) {
-        command.v_cmd_world_mps *= config_.max_speed_mps / speed;
+    if (command.v_cmd_world_mps.norm() > config_.max_speed_mps) {
+        command.v_cmd_world_mps = clamp_along_error(
+            command.v_cmd_world_mps, p_target_world_m - p_world_m, config_.max_speed_mps);
         command.speed_clamped = true;
     }
     command.yaw_rate_cmd_radps = yaw_rate(yaw_rad, target_yaw_rad);

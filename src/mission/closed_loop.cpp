@@ -19,6 +19,7 @@
 #include <scantling/sim/scenario_runner.hpp>
 #include <scantling/sim/simulator.hpp>
 
+#include "detail/coverage_monitor.hpp"
 #include "detail/loop_metrics.hpp"
 
 namespace scantling::mission {
@@ -34,8 +35,26 @@ bool is_frame(const sim::SensorReading& r) {
     return std::holds_alternative<sim::LidarReading>(r.data);
 }
 
+/// Accumulates the wall time of the scope into `total_s`.
+class StageClock {
+  public:
+    explicit StageClock(double& total_s) : total_s_(total_s) {}
+    ~StageClock() {
+        total_s_ +=
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    }
+    StageClock(const StageClock&) = delete;
+    StageClock& operator=(const StageClock&) = delete;
+
+  private:
+    double& total_s_;
+    std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+};
+
 /// One reading to the stack, as the io type a recording gives.
-void feed(DroneStack& stack, const sim::SensorReading& reading, detail::LoopMetrics& metrics) {
+void feed(DroneStack& stack, const sim::SensorReading& reading, detail::LoopMetrics& metrics,
+          LoopTiming& timing) {
+    StageClock clock(is_frame(reading) ? timing.odometry_s : timing.estimators_s);
     if (const auto* imu = std::get_if<sim::ImuSample>(&reading.data)) {
         stack.add_imu({imu->stamp_s, imu->specific_force_mps2, imu->angular_rate_radps});
     } else if (const auto* range = std::get_if<sim::RangeMeasurement>(&reading.data)) {
@@ -47,8 +66,7 @@ void feed(DroneStack& stack, const sim::SensorReading& reading, detail::LoopMetr
             stack.add_uwb({uwb->stamp_s, r.anchor_id, r.range_m, r.valid, r.line_of_sight});
         }
     } else if (const auto* lidar = std::get_if<sim::LidarReading>(&reading.data)) {
-        stack.add_sweep(lidar->sweep, reading.stamp_s);
-        metrics.add_sweep(lidar->sweep);
+        metrics.add_odometry(stack.add_sweep(lidar->sweep, reading.stamp_s));
     }
 }
 
@@ -61,6 +79,7 @@ std::string event_json(const control::MissionEvent& e) {
     if (e.waypoint_index) j["waypoint"] = *e.waypoint_index;
     if (e.home_leg) j["home_leg"] = true;
     if (e.command) j["command"] = std::string(control::to_string(*e.command));
+    if (!e.sensor.empty()) j["sensor"] = e.sensor;
     if (!e.reason.empty()) j["reason"] = e.reason;
     return j.empty() ? "{}" : j.dump();
 }
@@ -122,6 +141,42 @@ void log_operator(MissionFiles& files, std::span<const control::OperatorCommand>
         }
         files.add_event(t_s, "operator", j.dump());
     }
+}
+
+void log_faults(MissionFiles& files, FaultInjector& faults, double t_s) {
+    for (const FaultChange& change : faults.changes(t_s)) {
+        const SensorFault& f = faults.faults()[change.fault];
+        nlohmann::ordered_json j{{"fault", change.fault},
+                                 {"sensor", std::string(sim::to_string(f.sensor))},
+                                 {"kind", std::string(to_string(f.kind))}};
+        if (change.started) j["duration_s"] = f.duration_s;
+        files.add_event(t_s, change.started ? "fault_started" : "fault_ended", j.dump());
+    }
+}
+
+/// To the recording and the stack, or, inside a fault window, to the stack as NaNs or not at
+/// all (fault_injection.hpp).
+void deliver(const sim::SensorReading& reading, const FaultInjector& faults,
+             sim::RecordingWriter& writer, DroneStack& stack, detail::LoopMetrics& metrics,
+             LoopTiming& timing) {
+    if (const SensorFault* fault = faults.fault_of(reading)) {
+        if (fault->kind == FaultKind::kNan) feed(stack, poisoned(reading), metrics, timing);
+        return;
+    }
+    {
+        StageClock clock(timing.record_s);
+        writer.add(reading);
+    }
+    feed(stack, reading, metrics, timing);
+    if (const auto* lidar = std::get_if<sim::LidarReading>(&reading.data)) {
+        metrics.add_sweep(lidar->sweep);
+    }
+}
+
+std::vector<sim::SensorType> sensor_types(const sim::Scenario& simulation) {
+    std::vector<sim::SensorType> types;
+    for (const sim::SensorSpec& sensor : simulation.sensors) types.push_back(sensor.type);
+    return types;
 }
 
 std::vector<io::PathPointRecord> path_records(const planning::WaypointPath& path) {
@@ -189,6 +244,10 @@ MissionResult run_mission(const MissionScenario& scenario, const std::string& di
     control::OperatorScript script(scenario.operator_script);
     detail::LoopMetrics metrics(scenario.path, scenario.T_world_body_start().translation());
     MissionFiles files;
+    LoopTiming timing;
+    std::optional<detail::CoverageMonitor> coverage;
+    if (scenario.coverage) coverage.emplace(*scenario.coverage, sim.scene());
+    FaultInjector faults(scenario.faults, sensor_types(simulation));
     std::optional<double> ended_at_s;
     double next_progress_s = 0.0;
     const double duration_s = simulation.duration_s;
@@ -201,21 +260,31 @@ MissionResult run_mission(const MissionScenario& scenario, const std::string& di
                             sim.now_s(), directory));
         }
         const double t_s = sim.now_s();
-        writer.add_ground_truth(t_s, step.truth.T_world_body);
+        {
+            StageClock clock(timing.record_s);
+            writer.add_ground_truth(t_s, step.truth.T_world_body);
+        }
         std::stable_partition(step.readings.begin(), step.readings.end(),
                               [](const sim::SensorReading& r) { return !is_frame(r); });
+        log_faults(files, faults, t_s);
         for (const sim::SensorReading& reading : step.readings) {
-            writer.add(reading);
-            feed(stack, reading, metrics);
+            deliver(reading, faults, writer, stack, metrics, timing);
         }
         std::vector<control::OperatorCommand> commands = script.due(t_s);
         if (sim.tick() == 0)
             commands.insert(commands.begin(), {control::OperatorCommandType::kStart});
         log_operator(files, commands, t_s);
-        const StackCommand command = stack.command(t_s, commands);
-        log_command(files, command, t_s);
-        files.estimates.push_back(estimate_record(stack, t_s));
-        metrics.add_tick(step.truth, stack.estimate(), command, t_s);
+        const StackCommand command = [&] {
+            StageClock clock(timing.command_s);
+            return stack.command(t_s, commands);
+        }();
+        {
+            StageClock clock(timing.log_s);
+            log_command(files, command, t_s);
+            files.estimates.push_back(estimate_record(stack, t_s));
+            metrics.add_tick(step.truth, stack.estimate(), command, t_s);
+            if (coverage) coverage->add(t_s, step.truth.T_world_body);
+        }
         if (options.progress && t_s >= next_progress_s) {
             options.progress({t_s, duration_s, command.state});
             next_progress_s += 1.0;
@@ -227,6 +296,7 @@ MissionResult run_mission(const MissionScenario& scenario, const std::string& di
                             fmt::format(R"({{"state":"{}"}})", control::to_string(command.state)));
             break;
         }
+        StageClock clock(timing.simulate_s);
         step = sim.step(
             {.v_world_mps = command.v_world_mps, .yaw_rate_radps = command.yaw_rate_radps});
     }
@@ -238,6 +308,10 @@ MissionResult run_mission(const MissionScenario& scenario, const std::string& di
     result.ranges_rejected = local.ranges_rejected;
     result.uwb_applied = stack.global_ekf().counters().uwb_applied;
     result.uwb_rejected = stack.global_ekf().counters().uwb_rejected;
+    result.uwb_reacquisitions = stack.global_ekf().counters().uwb_reacquisitions;
+    result.inputs_rejected = stack.inputs_rejected();
+    result.timing = timing;
+    if (coverage) result.coverage = coverage->result();
     result.directory = directory;
     result.sim_time_s = sim.now_s();
     result.events = files.num_events;

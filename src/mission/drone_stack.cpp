@@ -2,8 +2,11 @@
 #include <scantling/mission/drone_stack.hpp>
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 #include <string>
+
+#include <fmt/format.h>
 
 #include <scantling/core/config_checks.hpp>
 #include <scantling/core/error.hpp>
@@ -53,11 +56,26 @@ Matrix6d capped(const Matrix6d& information, double min_sigma_m, double lever_m)
     return scale.asDiagonal() * capped_scaled * scale.asDiagonal();
 }
 
+bool has_finite_point(const PointCloud& cloud) {
+    return std::any_of(cloud.points.begin(), cloud.points.end(),
+                       [](const Eigen::Vector3d& p) { return p.allFinite(); });
+}
+
+bool moving(control::MissionState state) {
+    return state == control::MissionState::kRunning || state == control::MissionState::kGoingHome;
+}
+
 bool registered(odometry::FrameStatus status) {
     return status == odometry::FrameStatus::kOk || status == odometry::FrameStatus::kDegenerate;
 }
 
 }  // namespace
+
+odometry::LiodomConfig drone_odometry_defaults() {
+    odometry::LiodomConfig config = odometry::liodom_preset("os1_drone");
+    config.registration.degeneracy_ratio = 0.05;
+    return config;
+}
 
 void DroneStackConfig::validate(std::string_view prefix) const {
     odometry.validate(std::string(prefix) + ".odometry");
@@ -70,6 +88,7 @@ void DroneStackConfig::validate(std::string_view prefix) const {
     collision.validate(std::string(prefix) + ".collision");
     height.validate(std::string(prefix) + ".height");
     require_positive(max_sweep_age_s, prefix, "max_sweep_age_s");
+    require_positive(max_imu_age_s, prefix, "max_imu_age_s");
     require_positive(max_position_sigma_m, prefix, "max_position_sigma_m");
     manager.validate(std::string(prefix) + ".manager");
     if (!T_body_lidar.matrix().allFinite()) {
@@ -85,16 +104,39 @@ DroneStack::DroneStack(DroneStackConfig config, planning::WaypointPath path,
       global_(config_.global_ekf, T_world_odom_start_),
       odometry_(config_.odometry,
                 T_world_odom_start_.inverse() * T_world_body_start * config_.T_body_lidar),
-      manager_(std::move(path), config_.manager) {
+      manager_(std::move(path), config_.manager),
+      imu_watchdog_("imu", config_.max_imu_age_s, start_s),
+      lidar_watchdog_("lidar", config_.max_sweep_age_s, start_s) {
     local_.initialize(start_s, T_world_odom_start_.inverse() * T_world_body_start);
     global_.add_local(local_.state());
     odometry_.set_motion_prior(
         [this](double t0_s, double t1_s) { return odometry_prior(t0_s, t1_s); });
 }
 
+void DroneStack::reject(const std::string& sensor, double stamp_s) {
+    ++inputs_rejected_;
+    if (std::find(rejecting_.begin(), rejecting_.end(), sensor) != rejecting_.end()) return;
+    rejecting_.push_back(sensor);
+    pending_events_.push_back(
+        {.type = control::MissionEventType::kInputRejected,
+         .t_s = stamp_s,
+         .from = manager_.state(),
+         .to = manager_.state(),
+         .reason = "a sample with non-finite values was dropped before the estimators",
+         .sensor = sensor});
+}
+
+void DroneStack::accept(const std::string& sensor) { std::erase(rejecting_, sensor); }
+
 void DroneStack::add_imu(const io::ImuRecord& sample) {
+    if (!std::isfinite(sample.stamp_s) || !sample.specific_force_mps2.allFinite() ||
+        !sample.angular_rate_radps.allFinite()) {
+        return reject("imu", sample.stamp_s);
+    }
+    accept("imu");
     local_.add_imu(sample);
     global_.add_local(local_.state());
+    imu_watchdog_.feed(sample.stamp_s);
 }
 
 std::optional<Eigen::Isometry3d> DroneStack::odometry_prior(double t0_s, double t1_s) const {
@@ -107,7 +149,16 @@ std::optional<Eigen::Isometry3d> DroneStack::odometry_prior(double t0_s, double 
     return (T_odom_body_previous_sweep_ * T_bl).inverse() * (local_.state().T_odom_body * T_bl);
 }
 
-odometry::FrameReport DroneStack::add_sweep(const PointCloud& sweep_lidar, double stamp_s) {
+std::optional<odometry::FrameReport> DroneStack::add_sweep(const PointCloud& sweep_lidar,
+                                                           double stamp_s) {
+    // A sweep of NaNs (a dead link rather than an empty scene) is not a LiDAR sample: LiODOM
+    // is not told, so the next good sweep is predicted over the whole gap by the EKF.
+    if (!std::isfinite(stamp_s) || !has_finite_point(sweep_lidar)) {
+        reject("lidar", stamp_s);
+        return std::nullopt;
+    }
+    accept("lidar");
+    lidar_watchdog_.feed(stamp_s);
     PointCloud sweep = sweep_lidar;
     sweep.stamp_s = stamp_s;
     const odometry::FrameReport report = odometry_.process(sweep);
@@ -142,15 +193,31 @@ void DroneStack::fuse_increment(const odometry::FrameReport& report, double stam
     T_odom_body_previous_sweep_ = local_.state().T_odom_body;
 }
 
-void DroneStack::add_range(const io::RangeRecord& range) { local_.update_range(range); }
+void DroneStack::add_range(const io::RangeRecord& range) {
+    if (!std::isfinite(range.stamp_s) || (range.valid && !std::isfinite(range.range_m))) {
+        return reject("range_finder", range.stamp_s);
+    }
+    if (range.valid) accept("range_finder");  // a no-return says nothing of the link
+    local_.update_range(range);
+}
 
 void DroneStack::add_barometer(const io::BarometerRecord& altitude) {
+    if (!std::isfinite(altitude.stamp_s) || !std::isfinite(altitude.altitude_m)) {
+        return reject("barometer", altitude.stamp_s);
+    }
+    accept("barometer");
     local_.update_barometer({.stamp_s = altitude.stamp_s,
                              .altitude_m = altitude.altitude_m,
                              .sigma_m = config_.barometer_sigma_m});
 }
 
-void DroneStack::add_uwb(const io::UwbRecord& range) { global_.update_uwb(range); }
+void DroneStack::add_uwb(const io::UwbRecord& range) {
+    if (!std::isfinite(range.stamp_s) || (range.valid && !std::isfinite(range.range_m))) {
+        return reject("uwb", range.stamp_s);
+    }
+    if (range.valid) accept("uwb");
+    global_.update_uwb(range);
+}
 
 bool DroneStack::estimate_valid() const {
     const localization::DroneState state = global_.state();
@@ -160,14 +227,47 @@ bool DroneStack::estimate_valid() const {
            horizontal_variance <= config_.max_position_sigma_m * config_.max_position_sigma_m;
 }
 
+void DroneStack::watch_streams(double t_s, std::vector<control::OperatorCommand>& commands) {
+    for (safety::StreamWatchdog* watchdog : {&imu_watchdog_, &lidar_watchdog_}) {
+        const auto change = watchdog->check(t_s);
+        if (!change) continue;
+        const bool lost = change->change == safety::StreamChange::kLost;
+        pending_events_.push_back(
+            {.type = lost ? control::MissionEventType::kSensorLost
+                          : control::MissionEventType::kSensorRestored,
+             .t_s = t_s,
+             .from = manager_.state(),
+             .to = manager_.state(),
+             .reason = fmt::format("{}: no sample for {:.3f} s", watchdog->name(), change->age_s),
+             .sensor = watchdog->name()});
+    }
+    // The operator's own commands take precedence over the stack's pause and resume.
+    if (!commands.empty()) lidar_paused_ = false;
+    if (!config_.collision_prevention) return;
+    if (lidar_watchdog_.lost() && commands.empty() && moving(manager_.state())) {
+        commands.push_back({.type = control::OperatorCommandType::kPause});
+        lidar_paused_ = true;
+    } else if (!lidar_watchdog_.lost() && lidar_paused_ && commands.empty()) {
+        if (manager_.state() == control::MissionState::kPaused) {
+            commands.push_back({.type = control::OperatorCommandType::kResume});
+        }
+        lidar_paused_ = false;
+    }
+}
+
 StackCommand DroneStack::command(double t_s,
                                  std::span<const control::OperatorCommand> operator_commands) {
+    std::vector<control::OperatorCommand> commands(operator_commands.begin(),
+                                                   operator_commands.end());
+    watch_streams(t_s, commands);
     const localization::DroneState state = global_.state();
     const control::EstimatedState estimate{.p_world_m = state.T_odom_body.translation(),
                                            .yaw_rad = yaw_of(state.T_odom_body.linear()),
                                            .v_world_mps = state.v_odom_mps,
-                                           .valid = estimate_valid()};
-    control::MissionTick tick = manager_.update(estimate, t_s, operator_commands);
+                                           .valid = estimate_valid() && !imu_watchdog_.lost()};
+    control::MissionTick tick = manager_.update(estimate, t_s, commands);
+    tick.events.insert(tick.events.begin(), pending_events_.begin(), pending_events_.end());
+    pending_events_.clear();
     StackCommand out{.v_world_mps = tick.v_cmd_world_mps,
                      .yaw_rate_radps = tick.yaw_rate_cmd_radps,
                      .v_requested_world_mps = tick.v_cmd_world_mps,
@@ -193,7 +293,11 @@ Eigen::Vector3d DroneStack::apply_safety(const Eigen::Vector3d& v_world_mps, dou
                                          StackCommand& out) const {
     const bool fresh =
         latest_sweep_stamp_s_ && t_s - *latest_sweep_stamp_s_ <= config_.max_sweep_age_s;
-    if (!fresh) return v_world_mps;
+    // No obstacle data: no motion at all once the LiDAR has been lost (before its first sweep
+    // the vehicle is on the ground and the manager commands nothing).
+    if (!fresh)
+        return lidar_watchdog_.lost() && config_.collision_prevention ? Eigen::Vector3d::Zero()
+                                                                      : v_world_mps;
     const Eigen::Matrix3d R_world_body = global_.state().T_odom_body.linear();
     Eigen::Vector3d v = v_world_mps;
     if (config_.collision_prevention) {

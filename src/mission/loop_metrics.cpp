@@ -45,6 +45,17 @@ void LoopMetrics::add_sweep(const PointCloud& sweep_sensor) {
     }
 }
 
+void LoopMetrics::add_odometry(const std::optional<odometry::FrameReport>& report) {
+    if (!report || report->status == odometry::FrameStatus::kFirst) return;
+    const bool degenerate = report->status == odometry::FrameStatus::kDegenerate;
+    if (report->status == odometry::FrameStatus::kOk || degenerate) {
+        ++odometry_registered_;
+        odometry_degenerate_ += degenerate ? 1 : 0;
+    } else {
+        ++odometry_unregistered_;
+    }
+}
+
 void LoopMetrics::add_tick(const sim::MotionState& truth, const localization::DroneState& estimate,
                            const StackCommand& command, double t_s) {
     const Eigen::Vector3d p = truth.T_world_body.translation();
@@ -99,6 +110,9 @@ MissionResult LoopMetrics::result(control::MissionState final_state) const {
     r.safety_interventions = interventions_;
     r.min_obstacle_distance_m = std::isfinite(min_obstacle_m_) ? min_obstacle_m_ : 0.0;
     r.lidar_sweeps = sweeps_;
+    r.odometry_registered = odometry_registered_;
+    r.odometry_degenerate = odometry_degenerate_;
+    r.odometry_unregistered = odometry_unregistered_;
     return r;
 }
 
@@ -127,7 +141,32 @@ std::string summary_json(const MissionScenario& scenario, const MissionResult& r
                              {"ranges_applied", r.ranges_applied},
                              {"ranges_rejected", r.ranges_rejected},
                              {"uwb_applied", r.uwb_applied},
-                             {"uwb_rejected", r.uwb_rejected}};
+                             {"uwb_rejected", r.uwb_rejected},
+                             {"uwb_reacquisitions", r.uwb_reacquisitions},
+                             {"inputs_rejected", r.inputs_rejected},
+                             {"odometry_registered", r.odometry_registered},
+                             {"odometry_degenerate", r.odometry_degenerate},
+                             {"odometry_unregistered", r.odometry_unregistered}};
+    const LoopTiming& t = r.timing;
+    if (r.coverage) {
+        const perception::CoverageResult& c = *r.coverage;
+        nlohmann::ordered_json holes = nlohmann::json::array();
+        // The 20 largest (holes come largest first): a sparse coverage has thousands of specks.
+        for (std::size_t i = 0; i < std::min<std::size_t>(c.holes.size(), 20); ++i) {
+            const perception::CoverageHole& h = c.holes[i];
+            holes.push_back({{"area_m2", h.area_m2},
+                             {"centroid_world_m",
+                              {h.centroid_world.x(), h.centroid_world.y(), h.centroid_world.z()}}});
+        }
+        j["coverage"] = {{"fraction", c.covered_fraction},
+                         {"covered_area_m2", c.covered_area_m2},
+                         {"cells", c.cells},
+                         {"holes_total", c.holes.size()},
+                         {"largest_holes", holes}};
+    }
+    j["timing_s"] = {{"simulate", t.simulate_s}, {"record", t.record_s},
+                     {"odometry", t.odometry_s}, {"estimators", t.estimators_s},
+                     {"command", t.command_s},   {"log", t.log_s}};
     return j.dump(2) + "\n";
 }
 

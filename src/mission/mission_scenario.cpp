@@ -1,7 +1,10 @@
 // Mission scenario files (mission_scenario.hpp).
 #include <scantling/mission/mission_scenario.hpp>
 
+#include <fmt/format.h>
+
 #include <filesystem>
+#include <optional>
 #include <string>
 
 #include <scantling/control/config_yaml.hpp>
@@ -9,6 +12,7 @@
 #include <scantling/core/error.hpp>
 #include <scantling/io/config_node.hpp>
 #include <scantling/io/config_schema.hpp>
+#include <scantling/odometry/liodom.hpp>
 #include <scantling/planning/config_yaml.hpp>
 #include <scantling/safety/config_yaml.hpp>
 #include <scantling/sim/scenario_schema.hpp>
@@ -32,7 +36,29 @@ struct MissionDocument {
     double linger_s = 1.0;
     DroneStackConfig stack{};
     std::vector<RecordedPointSpec> recorded_points;
+    std::vector<SensorFault> faults;
 };
+
+/// The global EKF's tuning (its anchors come from the simulated UWB: calibrate()).
+const io::ConfigSchema<localization::GlobalEkfConfig>& global_ekf_schema() {
+    using S = localization::GlobalEkfConfig;
+    static const io::ConfigSchema<S> schema = [] {
+        io::ConfigSchema<S> s;
+        s.field("uwb_range_sigma_m", &S::uwb_range_sigma_m, "UWB range 1σ, m", io::kPositive)
+            .field("uwb_gate_chi2", &S::uwb_gate_chi2, "χ² gate of one range", io::kPositive)
+            .field("translation_random_walk_m_per_sqrt_s", &S::translation_random_walk_m_per_sqrt_s,
+                   "T_world_odom drift, m/√s", io::kNonNegative)
+            .field("yaw_random_walk_rad_per_sqrt_s", &S::yaw_random_walk_rad_per_sqrt_s,
+                   "T_world_odom yaw drift, rad/√s", io::kNonNegative)
+            .field("drift_velocity_random_walk_mps_per_sqrt_s",
+                   &S::drift_velocity_random_walk_mps_per_sqrt_s,
+                   "drift velocity random walk, m/s/√s", io::kNonNegative)
+            .field("uwb_reacquire_window", &S::uwb_reacquire_window,
+                   "ranges judged for re-acquisition (0: never)");
+        return s;
+    }();
+    return schema;
+}
 
 const io::ConfigSchema<DroneStackConfig>& stack_schema() {
     using S = DroneStackConfig;
@@ -40,15 +66,22 @@ const io::ConfigSchema<DroneStackConfig>& stack_schema() {
         io::ConfigSchema<S> s;
         s.field("odometry_sigma_m", &S::odometry_sigma_m,
                 "point-to-line noise scaling LiODOM's information, m", io::kPositive)
+            .field("odometry_min_sigma_m", &S::odometry_min_sigma_m,
+                   "floor of one LiODOM increment's σ, m", io::kPositive)
+            .field("odometry_lever_m", &S::odometry_lever_m, "m per rad when capping rotations",
+                   io::kPositive)
             .field("barometer_sigma_m", &S::barometer_sigma_m, "barometer 1σ, m", io::kPositive)
             .field("collision_prevention", &S::collision_prevention, "SPEC §3 on the sweep")
             .section("collision", &S::collision, safety::collision_prevention_schema())
             .field("height_keeping", &S::height_keeping, "floor and ceiling clearance")
             .section("height", &S::height, safety::height_keeping_schema())
-            .field("max_sweep_age_s", &S::max_sweep_age_s, "older: no safety data, s",
-                   io::kPositive)
+            .field("max_sweep_age_s", &S::max_sweep_age_s,
+                   "older: no safety data, the LiDAR is lost, s", io::kPositive)
+            .field("max_imu_age_s", &S::max_imu_age_s,
+                   "IMU silent longer: the estimate is invalid, s", io::kPositive)
             .field("max_position_sigma_m", &S::max_position_sigma_m,
                    "larger horizontal σ: estimate invalid, hover, m", io::kPositive)
+            .section("global_ekf", &S::global_ekf, global_ekf_schema())
             .section("manager", &S::manager, control::mission_manager_schema());
         return s;
     }();
@@ -66,6 +99,26 @@ const io::ConfigSchema<RecordedPointSpec>& recorded_point_schema() {
     return schema;
 }
 
+const io::ConfigSchema<SensorFault>& fault_schema() {
+    using S = SensorFault;
+    static const io::ConfigSchema<S> schema = [] {
+        std::vector<std::pair<std::string, sim::SensorType>> sensors;
+        for (int i = 0; i <= static_cast<int>(sim::SensorType::kBarometer); ++i) {
+            const auto type = static_cast<sim::SensorType>(i);
+            sensors.emplace_back(std::string(sim::to_string(type)), type);
+        }
+        io::ConfigSchema<S> s;
+        s.enum_field("sensor", &S::sensor, sensors, "every simulated sensor of this type")
+            .enum_field("kind", &S::kind,
+                        {{"dropout", FaultKind::kDropout}, {"nan", FaultKind::kNan}},
+                        "no readings, or readings of NaNs")
+            .field("start_s", &S::start_s, "simulated time, s", io::Range{.min = 0.0})
+            .field("duration_s", &S::duration_s, "s", io::kPositive);
+        return s;
+    }();
+    return schema;
+}
+
 const io::ConfigSchema<MissionDocument>& document_schema() {
     using S = MissionDocument;
     static const io::ConfigSchema<S> schema = [] {
@@ -76,7 +129,8 @@ const io::ConfigSchema<MissionDocument>& document_schema() {
             .field("floor_height_m", &S::floor_height_m, "world z of the floor")
             .field("linger_s", &S::linger_s, "simulated after the end, s", io::Range{.min = 0.0})
             .section("stack", &S::stack, stack_schema())
-            .list("recorded_points", &S::recorded_points, recorded_point_schema());
+            .list("recorded_points", &S::recorded_points, recorded_point_schema())
+            .list("faults", &S::faults, fault_schema());
         return s;
     }();
     return schema;
@@ -97,6 +151,81 @@ const io::ConfigNode& required(const io::ConfigNode& root, std::string_view key)
         io::detail::fail(root, "", "missing key '" + std::string(key) + "'");
     }
     return *node;
+}
+
+/// `coverage:` (coverage_spec.hpp); its rectangle is read separately (default: the mission's).
+const io::ConfigSchema<CoverageSpec>& coverage_schema() {
+    using S = CoverageSpec;
+    static const io::ConfigSchema<S> schema = [] {
+        io::ConfigSchema<S> s;
+        s.field("rate_hz", &S::rate_hz, "views per second", io::kPositive)
+            .section("mount", &S::mount, sim::detail::pose_spec_schema(),
+                     "body frame; the camera looks along its +x")
+            .field("occlusion_margin_m", &S::occlusion_margin_m,
+                   "surfaces nearer than this to a cell do not hide it, m", io::kNonNegative);
+        return s;
+    }();
+    return schema;
+}
+
+struct CameraSpec {
+    int width_px = 1280;
+    int height_px = 960;
+    double hfov_deg = 66.0;
+    double vfov_deg = 49.5;
+};
+
+const io::ConfigSchema<CameraSpec>& camera_schema() {
+    using S = CameraSpec;
+    static const io::ConfigSchema<S> schema = [] {
+        io::ConfigSchema<S> s;
+        s.field("width_px", &S::width_px, "pixels")
+            .field("height_px", &S::height_px, "pixels")
+            .field("hfov_deg", &S::hfov_deg, "full horizontal field of view, degrees")
+            .field("vfov_deg", &S::vfov_deg, "full vertical field of view, degrees");
+        return s;
+    }();
+    return schema;
+}
+
+const io::ConfigSchema<perception::CameraCoverageConfig>& coverage_config_schema() {
+    using S = perception::CameraCoverageConfig;
+    static const io::ConfigSchema<S> schema = [] {
+        io::ConfigSchema<S> s;
+        s.field("cell_size_m", &S::cell_size_m, "grid cell, m", io::kPositive)
+            .field("max_range_m", &S::max_range_m, "farther cells are not seen, m", io::kPositive)
+            .field("max_incidence_deg", &S::max_incidence_deg, "steeper views do not count, deg")
+            .field("max_mm_per_px", &S::max_mm_per_px, "coarser views do not count (0: any)",
+                   io::kNonNegative)
+            .field("min_views", &S::min_views, "views a cell needs");
+        return s;
+    }();
+    return schema;
+}
+
+/// `coverage:` of the document; `mission` gives the default rectangle (sweep, vertical).
+CoverageSpec coverage_from_yaml(const io::ConfigNode& node, const io::ConfigNode& mission) {
+    if (!node.is_map()) io::detail::fail(node, "coverage", "expected a map");
+    CoverageSpec spec;
+    const io::ConfigNode* rectangle = node.find("rectangle");
+    if (rectangle == nullptr) rectangle = mission.find("rectangle");
+    if (rectangle == nullptr) {
+        io::detail::fail(node, "coverage", "missing key 'rectangle' (the mission has none)");
+    }
+    planning::wall_rectangle_schema().apply(*rectangle, spec.rectangle);
+    CameraSpec camera;
+    if (const io::ConfigNode* c = node.find("camera")) camera_schema().apply(*c, camera);
+    spec.width_px = camera.width_px;
+    spec.height_px = camera.height_px;
+    spec.hfov_deg = camera.hfov_deg;
+    spec.vfov_deg = camera.vfov_deg;
+    const io::ConfigNode rest = without(node, {"rectangle", "camera", "cell_size_m", "max_range_m",
+                                               "max_incidence_deg", "max_mm_per_px", "min_views"});
+    coverage_schema().apply(rest, spec);
+    io::ConfigNode grid =
+        without(node, {"rectangle", "camera", "mount", "rate_hz", "occlusion_margin_m"});
+    coverage_config_schema().apply(grid, spec.config);
+    return spec;
 }
 
 /// The robot knows its own mounts and the surveyed UWB anchors.
@@ -124,7 +253,19 @@ void calibrate(MissionScenario& m) {
 MissionScenario from_document(const io::ConfigNode& root, const std::string& name) {
     if (!root.is_map()) io::detail::fail(root, "", "expected a map (a mission scenario)");
     MissionDocument document;
-    document_schema().apply(without(root, {"simulation", "mission", "operator"}), document);
+    io::ConfigNode rest = without(root, {"simulation", "mission", "operator", "coverage"});
+    // stack.odometry is LiODOM's own schema (with its presets), read over the stack's default.
+    std::optional<io::ConfigNode> odometry;
+    for (auto& [key, value] : rest.map) {
+        if (key != "stack" || !value.is_map()) continue;
+        if (const io::ConfigNode* node = value.find("odometry")) odometry = *node;
+        value = without(value, {"odometry"});
+    }
+    document_schema().apply(rest, document);
+    if (odometry) {
+        document.stack.odometry =
+            odometry::liodom_config_from_node(*odometry, document.stack.odometry);
+    }
     MissionScenario m;
     m.name = document.name.empty() ? std::filesystem::path(name).stem().string() : document.name;
     m.description = document.description;
@@ -133,6 +274,7 @@ MissionScenario from_document(const io::ConfigNode& root, const std::string& nam
     m.floor_height_m = document.floor_height_m;
     m.linger_s = document.linger_s;
     m.stack = document.stack;
+    m.faults = document.faults;
     planning::MissionContext context;
     for (const RecordedPointSpec& point : document.recorded_points) {
         context.recorded_points.record(point.name, {.p_world_m = point.position_m, .yaw_rad = {}});
@@ -142,9 +284,48 @@ MissionScenario from_document(const io::ConfigNode& root, const std::string& nam
     if (const io::ConfigNode* script = root.find("operator")) {
         m.operator_script = control::operator_script_from_yaml(*script, "operator").commands();
     }
+    if (const io::ConfigNode* coverage = root.find("coverage")) {
+        m.coverage = coverage_from_yaml(*coverage, required(root, "mission"));
+    }
     calibrate(m);
     m.validate();
     return m;
+}
+
+/// The entry `key` of the map `node`, created (null) when absent.
+io::ConfigNode& entry(io::ConfigNode& node, const std::string& key) {
+    for (auto& [k, value] : node.map) {
+        if (k == key) return value;
+    }
+    return node.map.emplace_back(key, io::ConfigNode{}).second;
+}
+
+/// Applies one "a.b.c=value" override: the value (YAML: a scalar or a flow collection) replaces
+/// or adds the key, creating the maps on its way.
+void apply_override(io::ConfigNode& root, const std::string& assignment) {
+    const std::size_t eq = assignment.find('=');
+    if (eq == std::string::npos || eq == 0) {
+        throw ConfigError("--set " + assignment +
+                          ": expected KEY=VALUE (KEY dotted, e.g. "
+                          "stack.manager.tracking.use_vtp=false)");
+    }
+    const std::string key = assignment.substr(0, eq);
+    io::ConfigNode* node = &root;
+    std::size_t begin = 0;
+    while (true) {
+        const std::size_t dot = key.find('.', begin);
+        const std::string part = key.substr(begin, dot == std::string::npos ? dot : dot - begin);
+        if (part.empty()) throw ConfigError("--set " + assignment + ": empty key component");
+        if (node->is_null()) node->kind = io::ConfigNode::Kind::kMap;
+        if (!node->is_map()) {
+            throw ConfigError("--set " + assignment + ": '" + key.substr(0, begin - 1) +
+                              "' is not a map");
+        }
+        node = &entry(*node, part);
+        if (dot == std::string::npos) break;
+        begin = dot + 1;
+    }
+    *node = io::parse_yaml_string(assignment.substr(eq + 1), "--set " + key);
 }
 
 }  // namespace
@@ -155,10 +336,16 @@ void MissionScenario::validate() const {
                            "finite >= 0");
     stack.validate("stack");
     planning::validate(path, "mission");
+    for (std::size_t i = 0; i < faults.size(); ++i)
+        faults[i].validate(fmt::format("faults[{}]", i));
+    if (coverage) coverage->validate("coverage");
 }
 
-MissionScenario load_mission_scenario(const std::string& path) {
-    MissionScenario m = from_document(io::parse_yaml_file(path), path);
+MissionScenario load_mission_scenario(const std::string& path,
+                                      const std::vector<std::string>& overrides) {
+    io::ConfigNode root = io::parse_yaml_file(path);
+    for (const std::string& assignment : overrides) apply_override(root, assignment);
+    MissionScenario m = from_document(root, path);
     m.simulation.base_directory = std::filesystem::path(path).parent_path().string();
     if (m.simulation.name.empty()) m.simulation.name = m.name;
     return m;

@@ -172,6 +172,26 @@ void EdgeRegistrationConfig::validate(std::string_view prefix) const {
     parallel.validate(p + ".parallel");
 }
 
+namespace {
+
+/// `H` without its directions weaker than `ratio` × the strongest (judged in the scaled frame
+/// of `D`, as the degeneracy test): after solution remapping the pose along them is the
+/// prior's, so the registration carries no information there.
+Matrix6d observed_information(const Matrix6d& H, const Matrix6d& D, double ratio) {
+    const Matrix6d Hs = D * H * D;
+    const Eigen::SelfAdjointEigenSolver<Matrix6d> eig(0.5 * (Hs + Hs.transpose()));
+    const Vector6d& lambda = eig.eigenvalues();
+    Matrix6d kept = Matrix6d::Zero();
+    for (int j = 0; j < 6; ++j) {
+        if (!(lambda(j) > ratio * lambda(5)) || !(lambda(j) > 0.0)) continue;
+        kept += lambda(j) * eig.eigenvectors().col(j) * eig.eigenvectors().col(j).transpose();
+    }
+    const Matrix6d D_inverse = D.inverse();
+    return D_inverse * kept * D_inverse;
+}
+
+}  // namespace
+
 EdgeRegistrationResult register_edges(const EdgeFeatures& edges, const LocalMap& map,
                                       const Eigen::Isometry3d& T_init, double min_range_m,
                                       double max_range_m, const EdgeRegistrationConfig& config,
@@ -285,7 +305,8 @@ EdgeRegistrationResult register_edges(const EdgeFeatures& edges, const LocalMap&
     result.T_world_sensor = T;
     result.registered = true;
     result.num_correspondences = ne.count;
-    result.information = ne.H;
+    result.information =
+        config.remap_degenerate ? observed_information(ne.H, D, config.degeneracy_ratio) : ne.H;
     result.rmse_m =
         ne.count > 0 ? std::sqrt(ne.sum_sq_distance / static_cast<double>(ne.count)) : 0.0;
     return result;

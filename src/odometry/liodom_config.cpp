@@ -157,10 +157,9 @@ FileLocation line_of(const io::ConfigNode& node) {
     return location;
 }
 
-/// Applies `node` (a map, `preset` key removed) over the named preset.
-LiodomConfig config_from(const io::ConfigNode& node, std::string_view default_preset) {
+/// Applies `node` over `base`, or over the preset it names (`preset: NAME`).
+LiodomConfig config_from(const io::ConfigNode& node, LiodomConfig base) {
     io::ConfigNode body = node;
-    std::string preset(default_preset);
     if (body.is_map()) {
         const auto it = std::find_if(body.map.begin(), body.map.end(),
                                      [](const auto& e) { return e.first == "preset"; });
@@ -171,19 +170,19 @@ LiodomConfig config_from(const io::ConfigNode& node, std::string_view default_pr
                                      fmt::format("{}", fmt::join(liodom_preset_names(), ", ")) +
                                      ")");
             }
-            preset = it->second.scalar;
+            const std::string preset = it->second.scalar;
             if (detail::preset_yaml(preset).empty()) {
                 throw ParseError(node.file, line_of(it->second),
                                  fmt::format("key 'preset': '{}' is not a preset (expected one "
                                              "of: {})",
                                              preset, fmt::join(liodom_preset_names(), ", ")));
             }
+            base = liodom_preset(preset);
             body.map.erase(it);
         }
     }
-    LiodomConfig config = liodom_preset(preset);
-    liodom_schema().apply(body, config);
-    return config;
+    liodom_schema().apply(body, base);
+    return base;
 }
 
 }  // namespace
@@ -204,7 +203,11 @@ LiodomConfig liodom_preset(std::string_view name) {
 }
 
 LiodomConfig load_liodom_config(const std::string& path) {
-    return config_from(io::parse_yaml_file(path), "kitti");
+    return config_from(io::parse_yaml_file(path), liodom_preset("kitti"));
+}
+
+LiodomConfig liodom_config_from_node(const io::ConfigNode& node, const LiodomConfig& base) {
+    return config_from(node, base);
 }
 
 std::string describe_liodom_config(const LiodomConfig& config) {

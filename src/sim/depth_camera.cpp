@@ -92,7 +92,7 @@ PointCloud DepthCamera::scan(const SceneView& scene, const Eigen::Isometry3d& T_
         rays[i] = Ray{T_world_camera.translation(), (T_world_camera.linear() * d).normalized(),
                       config_.max_depth_m / d.z(), 0.0};
     }
-    const std::vector<RayHit> hits = scene.caster.cast_batch(rays, parallel);
+    const std::vector<RayHit> hits = scene.cast_batch(rays, parallel);
     PointCloud cloud = nan_organised_cloud(rays.size(), stamp_s);
     for (std::size_t i = 0; i < hits.size(); ++i) {
         if (!hits[i].hit) continue;

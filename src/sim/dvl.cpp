@@ -62,9 +62,9 @@ DvlBeam Dvl::measure_beam(const SceneView& scene, const Eigen::Isometry3d& T_wor
     const double velocity_noise = rng.normal();
     const double range_noise = rng.normal();
     const double cos_a = std::cos(config_.beam_angle_rad);
-    const RayHit hit = scene.caster.cast(T_world_sensor.translation(),
-                                         (T_world_sensor.linear() * beams_sensor_[i]).normalized(),
-                                         config_.max_altitude_m / cos_a);
+    const RayHit hit = scene.cast(T_world_sensor.translation(),
+                                  (T_world_sensor.linear() * beams_sensor_[i]).normalized(),
+                                  config_.max_altitude_m / cos_a);
     DvlBeam beam;
     if (!hit.hit || hit.range_m < config_.min_altitude_m / cos_a) return beam;
     beam.locked = true;

@@ -86,7 +86,7 @@ std::vector<double> MultibeamSonar::signal_power(const SceneView& scene,
         rays.push_back(Ray{T_world_sensor.translation(), d, range_m, 0.0});
         ray_index.push_back(i);
     }
-    const std::vector<RayHit> hits = scene.caster.cast_batch(rays, parallel);
+    const std::vector<RayHit> hits = scene.cast_batch(rays, parallel);
     const double bin_m = (config_.max_range_m - config_.min_range_m) / config_.num_bins;
     std::vector<double> power(static_cast<std::size_t>(config_.num_beams) * config_.num_bins, 0.0);
     for (std::size_t h = 0; h < hits.size(); ++h) {

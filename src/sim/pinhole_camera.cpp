@@ -105,7 +105,7 @@ RgbImage PinholeCamera::render(const SceneView& scene, const Eigen::Isometry3d& 
             Ray{T_world_camera.translation(),
                 (T_world_camera.linear() * rays_camera_[i]).normalized(), config_.max_range_m, 0.0};
     }
-    const std::vector<RayHit> hits = scene.caster.cast_batch(rays, parallel);
+    const std::vector<RayHit> hits = scene.cast_batch(rays, parallel);
     RgbImage image{config_.intrinsics.width, config_.intrinsics.height,
                    std::vector<Rgb8>(rays.size(), config_.background)};
     parallel_for(parallel, hits.size(), kShadeGrain, [&](std::size_t begin, std::size_t end) {
@@ -146,7 +146,7 @@ std::vector<io::DefectSighting> PinholeCamera::sight_defects(
         const Eigen::Vector3d centre_camera = T_camera_world * defect.centre;
         const std::optional<Eigen::Vector2d> pixel = config_.intrinsics.project(centre_camera);
         if (!pixel) continue;
-        if (scene.caster.occluded(eye_world, defect.centre)) continue;
+        if (scene.occluded(eye_world, defect.centre)) continue;
         sightings.push_back(
             {.image = 0,
              .stamp_s = 0.0,

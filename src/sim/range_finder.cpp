@@ -92,8 +92,8 @@ RangeMeasurement RangeFinder::measure(const SceneView& scene, const Eigen::Isome
     double nearest_m = std::numeric_limits<double>::infinity();
     for (const Eigen::Vector3d& d : rays_sensor_) {
         const RayHit hit =
-            scene.caster.cast(T_world_sensor.translation(),
-                              (T_world_sensor.linear() * d).normalized(), config_.max_range_m);
+            scene.cast(T_world_sensor.translation(), (T_world_sensor.linear() * d).normalized(),
+                       config_.max_range_m);
         if (hit.hit) nearest_m = std::min(nearest_m, hit.range_m);
     }
     const double noise = rng.normal();

@@ -237,6 +237,7 @@ void Scenario::validate(std::string_view prefix) const {
     }
     export_world.validate(key(prefix, "export"));
     parallel.validate(key(prefix, "parallel"));
+    detail::check_moving_obstacles(moving_obstacles, key(prefix, "moving_obstacles"));
     // Builds each sensor's effective config (the runner's): its rate and frame size.
     const RecordingEstimate estimate = estimate_recording(*this);
     check_clock(*this, estimate, prefix);

@@ -79,7 +79,9 @@ void run_loop(const Loop& loop) {
             const double stamp_s = clock.last_fire_time_s(i);
             // Measurements start in [0, duration): a sweep at the end would see no motion.
             if (stamp_s >= loop.duration_s - kStampTolerance_s) continue;
-            const detail::FireContext context{loop.scene, loop.vehicle, k, stamp_s,
+            // Obstacles frozen at the stamp for the whole firing (sensor_mount.hpp, SceneView).
+            const SceneView scene = loop.scene.at_time(stamp_s);
+            const detail::FireContext context{scene, loop.vehicle, k, stamp_s,
                                               loop.scenario.parallel};
             loop.writer.add(
                 {.sensor_index = i, .stamp_s = stamp_s, .data = loop.sensors[i]->fire(context)});
@@ -135,7 +137,8 @@ ScenarioRunResult run_scenario(const Scenario& scenario, const std::string& dire
     const detail::VehicleHistory vehicle = detail::simulate_vehicle(
         scenario.vehicle, scenario.world, world, scenario.dt_s, num_ticks, vehicle_rng);
     const RayCaster caster(world.mesh, world.surface_tags);
-    const SceneView scene{caster, world.metadata};
+    const MovingObstacles obstacles(scenario.moving_obstacles);
+    const SceneView scene{caster, world.metadata, &obstacles, 0.0};
 
     stop_if_requested(options, 0.0, duration_s, directory);  // the world may take a while
     RecordingWriter writer(directory, options.overwrite);

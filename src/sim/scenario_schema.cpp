@@ -209,7 +209,9 @@ const io::ConfigSchema<Scenario>& scenario_schema() {
                    detail::between(limits::kMinDt_s, limits::kMaxDt_s))
             .field("seed", &S::seed, "root of every random stream")
             .section("export", &S::export_world, detail::export_schema())
-            .section("parallel", &S::parallel, detail::parallel_schema());
+            .section("parallel", &S::parallel, detail::parallel_schema())
+            .list("moving_obstacles", &S::moving_obstacles, detail::moving_obstacle_schema(),
+                  "spheres and boxes moving through the world");
         return s;
     }();
     return schema;
@@ -233,9 +235,16 @@ void check_scenario_document(const io::ConfigNode& root) {
         }
     }
     const io::ConfigNode* sensors = root.find("sensors");
-    if (sensors == nullptr || !sensors->is_sequence()) return;
-    for (std::size_t i = 0; i < sensors->sequence.size(); ++i) {
-        detail::check_sensor(sensors->sequence[i], io::detail::index_key("sensors", i));
+    if (sensors != nullptr && sensors->is_sequence()) {
+        for (std::size_t i = 0; i < sensors->sequence.size(); ++i) {
+            detail::check_sensor(sensors->sequence[i], io::detail::index_key("sensors", i));
+        }
+    }
+    const io::ConfigNode* obstacles = root.find("moving_obstacles");
+    if (obstacles == nullptr || !obstacles->is_sequence()) return;
+    for (std::size_t i = 0; i < obstacles->sequence.size(); ++i) {
+        detail::check_moving_obstacle(obstacles->sequence[i],
+                                      io::detail::index_key("moving_obstacles", i));
     }
 }
 

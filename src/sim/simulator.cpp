@@ -75,7 +75,8 @@ struct Simulator::Impl {
     detail::ScenarioSensors sensors;
     World world;
     RayCaster caster;
-    SceneView scene;
+    MovingObstacles obstacles;
+    SceneView scene;  ///< obstacles at the current tick's time
     Vehicle vehicle;
     detail::VehicleHistory history;
     SimClock clock;
@@ -88,7 +89,8 @@ struct Simulator::Impl {
           sensors(detail::make_scenario_sensors(scenario, root)),
           world(build_world(scenario.world, scenario.base_directory)),
           caster(world.mesh, world.surface_tags),
-          scene{caster, world.metadata},
+          obstacles(scenario.moving_obstacles),
+          scene{caster, world.metadata, &obstacles, 0.0},
           vehicle(scenario, checked_start(T_world_body_start),
                   root.split(detail::kVehicleStream).next_u64()),
           history({vehicle.state()}, scenario.dt_s),
@@ -129,7 +131,10 @@ struct Simulator::Impl {
     }
 
     SensorReading fire(const PendingFiring& f) {
-        const detail::FireContext context{scene, history, f.tick, f.stamp_s, scenario.parallel};
+        // Obstacles frozen at the stamp for the whole firing (sensor_mount.hpp, SceneView).
+        const SceneView scene_at_stamp = scene.at_time(f.stamp_s);
+        const detail::FireContext context{scene_at_stamp, history, f.tick, f.stamp_s,
+                                          scenario.parallel};
         return {.sensor_index = f.sensor,
                 .stamp_s = f.stamp_s,
                 .data = sensors[f.sensor]->fire(context)};
@@ -156,6 +161,7 @@ SimStep Simulator::step(const VehicleCommand& command) {
     impl_->clock.advance();
     state.stamp_s = impl_->clock.now_s();  // from the tick count: no accumulated rounding
     impl_->history.append(state);
+    impl_->scene.time_s = state.stamp_s;
     return impl_->readings_now();
 }
 
@@ -166,6 +172,7 @@ const MotionState& Simulator::truth() const { return impl_->history.last(); }
 const World& Simulator::world() const { return impl_->world; }
 const SceneView& Simulator::scene() const { return impl_->scene; }
 const Scenario& Simulator::scenario() const { return impl_->scenario; }
+const MovingObstacles& Simulator::moving_obstacles() const { return impl_->obstacles; }
 double Simulator::sensor_rate_hz(std::size_t i) const { return impl_->sensors.at(i)->rate_hz(); }
 
 }  // namespace scantling::sim

@@ -56,7 +56,7 @@ bool StereoPoints::seen_by_right(const SceneView& scene, const Eigen::Isometry3d
                                  const Eigen::Vector3d& p_world) const {
     const Eigen::Vector3d right_in_left(config_.baseline_m, 0.0, 0.0);
     if (!config_.intrinsics.project(p_left - right_in_left)) return false;
-    return !scene.caster.occluded(T_world_camera * right_in_left, p_world);
+    return !scene.occluded(T_world_camera * right_in_left, p_world);
 }
 
 PointCloud StereoPoints::scan(const SceneView& scene, const Eigen::Isometry3d& T_world_body,
@@ -71,7 +71,7 @@ PointCloud StereoPoints::scan(const SceneView& scene, const Eigen::Isometry3d& T
                       (T_world_camera.linear() * rays_camera[i]).normalized(),
                       config_.max_depth_m / rays_camera[i].z(), 0.0};
     }
-    const std::vector<RayHit> hits = scene.caster.cast_batch(rays, parallel);
+    const std::vector<RayHit> hits = scene.cast_batch(rays, parallel);
     PointCloud cloud;
     cloud.stamp_s = stamp_s;
     for (std::size_t i = 0; i < hits.size(); ++i) {

@@ -51,7 +51,7 @@ UwbRange UwbTag::range_to(const SceneView& scene, const Eigen::Vector3d& p_tag,
     const double true_range_m = (anchor.position_world - p_tag).norm();
     UwbRange range;
     range.anchor_id = anchor.id;
-    range.line_of_sight = !scene.caster.occluded(p_tag, anchor.position_world);
+    range.line_of_sight = !scene.occluded(p_tag, anchor.position_world);
     const double lost_u = rng.uniform();
     const double noise = rng.normal();
     const double excess_u = rng.uniform();

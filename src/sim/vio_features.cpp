@@ -58,7 +58,7 @@ double vio_feature_quality(const SceneView& scene, const Eigen::Isometry3d& T_wo
                 .max_range_m = config.max_range_m,
                 .min_range_m = 0.0};
             // Near surfaces still occlude: they count as featureless, not as see-through.
-            const RayHit hit = scene.caster.cast(ray);
+            const RayHit hit = scene.cast(ray);
             if (hit.hit && hit.range_m >= config.min_range_m &&
                 surface_of(scene.metadata, hit.surface_tag).textured) {
                 ++textured_hits;

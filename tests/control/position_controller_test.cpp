@@ -93,5 +93,23 @@ TEST(PositionController, BadConfigsAreRefusedNamingTheField) {
                            "position_controller.kd_s = -0.3");
 }
 
+TEST(ClampAlongError, KeepsTheCrossTrackPartAndCutsTheApproach) {
+    // Chasing a target 2 m ahead along x at kp = 2 (4 m/s) while the integral holds 0.5 m/s
+    // against a crosswind along y: the limit takes speed off x only.
+    const Eigen::Vector3d v = clamp_along_error({4.0, 0.5, 0.0}, {2.0, 0.0, 0.0}, 1.0);
+    EXPECT_NEAR(v.y(), 0.5, 1e-12);
+    EXPECT_NEAR(v.x(), std::sqrt(1.0 - 0.25), 1e-12);
+    EXPECT_NEAR(v.norm(), 1.0, 1e-12);
+    // A cross-track part above the limit is all that is left, at the limit.
+    const Eigen::Vector3d across = clamp_along_error({3.0, 2.0, 0.0}, {1.0, 0.0, 0.0}, 1.0);
+    EXPECT_NEAR(across.x(), 0.0, 1e-12);
+    EXPECT_NEAR(across.y(), 1.0, 1e-12);
+    // No error direction: the whole vector scales.
+    const Eigen::Vector3d uniform =
+        clamp_along_error({3.0, 4.0, 0.0}, Eigen::Vector3d::Zero(), 1.0);
+    EXPECT_NEAR(uniform.x(), 0.6, 1e-12);
+    EXPECT_NEAR(uniform.y(), 0.8, 1e-12);
+}
+
 }  // namespace
 }  // namespace scantling::control

@@ -150,10 +150,12 @@ TEST(WaypointSequencer, FollowerKeepsCloserToAStraightLegUnderALateralDisturbanc
         "follower off: max %.3f m, mean %.3f m, %.1f s; on: max %.3f m, mean %.3f m, %.1f s\n",
         off.max_deviation_m, off.mean_deviation_m, off.duration_s, on.max_deviation_m,
         on.mean_deviation_m, on.duration_s);
-    // Measured (20 Hz, τ = 0.3 s): off 2.27 m max, 1.53 m mean (the vector clamp shrinks the
-    // cross-track correction while the along-track error is large); on 0.27 m, 0.10 m.
-    constexpr double kMaxDeviationOnM = 0.35;  // ~λ + the disturbance's push over τ
-    constexpr double kMaxDeviationOffM = 1.5;  // at least this far off without the follower
+    // Measured (20 Hz, τ = 0.3 s): off 0.56 m max, 0.43 m mean (flying at the waypoint, the
+    // push is corrected only as the line's end comes nearer); on 0.16 m, 0.03 m. With a speed
+    // limit that scaled the whole command (before clamp_along_error): off 2.27 / 1.53 m, on
+    // 0.27 / 0.10 m.
+    constexpr double kMaxDeviationOnM = 0.2;   // ~λ + the disturbance's push over τ
+    constexpr double kMaxDeviationOffM = 0.5;  // at least this far off without the follower
     EXPECT_LE(on.max_deviation_m, kMaxDeviationOnM);
     EXPECT_GE(off.max_deviation_m, kMaxDeviationOffM);
     EXPECT_LT(3.0 * on.max_deviation_m, off.max_deviation_m);  // issue 13's "3× smaller"

@@ -14,45 +14,14 @@
 #include <scantling/mission/closed_loop.hpp>
 #include <scantling/mission/mission_scenario.hpp>
 
+#include "mission_test_support.hpp"
+
 namespace scantling::mission {
 namespace {
 
+using test::kGoTo;
+using test::temp_dir;
 namespace fs = std::filesystem;
-
-/// 12 s in the dry dock beside the hull: hover at the start, fly 2 m along the hull and 0.5 m
-/// up to the recorded point A, with the default scenario's sensors (UWB anchors included).
-const std::string kGoTo = R"(
-simulation:
-  world: {type: ship_hull, ship_hull: {surroundings: {environment: dry_dock}}}
-  vehicle: {type: mav}
-  sensors:
-    - {type: spinning_lidar, columns: 512, T_body_sensor: {xyz: [0.0, 0.0, 0.1]}}
-    - {type: imu, rate_hz: 200}
-    - {type: range_finder, rate_hz: 20, T_body_sensor: {xyz: [0.0, 0.0, -0.05], rpy_deg: [0.0, 90.0, 0.0]}}
-    - {type: barometer, rate_hz: 20}
-    - type: uwb
-      anchors:
-        - {id: 1, position_world: [2.0, 14.0, 0.5]}
-        - {id: 2, position_world: [28.0, 14.0, 0.5]}
-        - {id: 3, position_world: [28.0, 14.0, 8.0]}
-        - {id: 4, position_world: [2.0, 14.0, 8.0]}
-  duration_s: 12
-  seed: 3
-  export: {world: false}
-start: {xyz: [20.0, 10.6, 2.0], rpy_deg: [0.0, 0.0, -90.0]}
-floor_height_m: -1.5
-recorded_points: [{name: A, position_m: [18.0, 10.6, 2.5]}]
-mission: {type: goto, point: A}
-operator: [{time_s: 11.0, command: abort}]
-linger_s: 20.0  # keep flying to the end: the abort comes after the arrival
-)";
-
-fs::path temp_dir(const std::string& name) {
-    const fs::path dir = fs::path(::testing::TempDir()) /
-                         ("scantling_mission_" + name + "_" + std::to_string(::getpid()));
-    fs::remove_all(dir);
-    return dir;
-}
 
 TEST(MissionScenario, ReadsTheDefaultJobAndCalibratesTheStack) {
     const MissionScenario m = load_mission_scenario(
@@ -65,6 +34,27 @@ TEST(MissionScenario, ReadsTheDefaultJobAndCalibratesTheStack) {
     // The ranger's beam (sim: +x) becomes the EKF's ray (+z): pointing down.
     const Eigen::Vector3d ray = m.stack.local_ekf.T_body_sensor.linear() * Eigen::Vector3d::UnitZ();
     EXPECT_NEAR(ray.z(), -1.0, 1e-9);
+}
+
+TEST(MissionScenario, OverridesKeysFromTheCommandLine) {
+    const std::string path =
+        std::string(SCANTLING_SOURCE_DIR) + "/scenarios/missions/hull_sweep_closed_loop.yaml";
+    const MissionScenario m =
+        load_mission_scenario(path, {"stack.manager.tracking.use_vtp=false",
+                                     "simulation.duration_s=30", "stack.collision={d_min_m: 1.2}"});
+    EXPECT_FALSE(m.stack.manager.tracking.use_vtp);
+    EXPECT_EQ(m.simulation.duration_s, 30.0);
+    EXPECT_EQ(m.stack.collision.d_min_m, 1.2);
+    EXPECT_TRUE(load_mission_scenario(path).stack.manager.tracking.use_vtp);
+    EXPECT_THROW(load_mission_scenario(path, {"stack.manager.tracking.use_vtp"}), ConfigError);
+    EXPECT_THROW(load_mission_scenario(path, {"stack..x=1"}), ConfigError);
+    EXPECT_THROW(load_mission_scenario(path, {"description.x=1"}), ConfigError);  // a scalar
+    try {
+        load_mission_scenario(path, {"stack.manager.tracking.use_vtq=false"});
+        FAIL() << "a misspelt key was accepted";
+    } catch (const ParseError& e) {
+        EXPECT_NE(std::string(e.what()).find("use_vtq"), std::string::npos) << e.what();
+    }
 }
 
 TEST(MissionScenario, RefusesUnknownKeysAndMissingParts) {

@@ -113,6 +113,10 @@ enum class MissionEventType {
     kCommandRefused,   ///< command, with why
     kEstimateInvalid,  ///< the first tick of an invalid estimate (hovering from now on)
     kCommandReplaced,  ///< a non-finite command was replaced by zero
+    // Raised by the stack around the manager (mission/drone_stack.hpp), not by the manager:
+    kSensorLost,      ///< `sensor` has been silent for longer than its maximum age
+    kSensorRestored,  ///< `sensor` delivers again
+    kInputRejected,   ///< a non-finite sample of `sensor` was dropped before the estimators
 };
 
 struct MissionEvent {
@@ -124,6 +128,7 @@ struct MissionEvent {
     bool home_leg = false;  ///< the waypoint reached is home's
     std::optional<OperatorCommandType> command{};
     std::string reason{};
+    std::string sensor{};  ///< the input stream of the sensor events ("imu", "lidar", ...)
 };
 
 /// What one tick produced.

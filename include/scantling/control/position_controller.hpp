@@ -63,6 +63,15 @@ struct PositionControllerConfig {
     void validate(std::string_view prefix = "position_controller") const;
 };
 
+/// The speed limit that keeps what holds the vehicle on its line: `v_mps` (norm above
+/// `max_speed_mps`) loses speed along `error_m` (towards the target: the approach) before
+/// across it (the integral's wind compensation and the cross-track correction). Scaling the
+/// whole vector instead cut a 5 m/s crosswind's compensation by the ratio of the VTP chase
+/// speed (kp δ = 4 m/s) to the limit, leaving the sweep lines 0.12 m downwind (docs/results.md).
+/// A zero error scales the whole vector. Pure.
+Eigen::Vector3d clamp_along_error(const Eigen::Vector3d& v_mps, const Eigen::Vector3d& error_m,
+                                  double max_speed_mps);
+
 struct VelocityCommand {
     Eigen::Vector3d v_cmd_world_mps = Eigen::Vector3d::Zero();
     double yaw_rate_cmd_radps = 0.0;  ///< about world z

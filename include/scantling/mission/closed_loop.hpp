@@ -19,6 +19,7 @@
 /// independent).
 
 #include <functional>
+#include <optional>
 #include <string>
 
 #include <scantling/mission/mission_scenario.hpp>
@@ -35,6 +36,16 @@ struct MissionRunOptions {
     std::function<void(const MissionProgress&)> progress = {};  ///< about once per sim second
     bool overwrite = false;
     std::function<bool()> stop_requested = {};  ///< polled each tick (ScenarioInterrupted)
+};
+
+/// Wall time of the loop's stages over a run, s (issue 13, item 7).
+struct LoopTiming {
+    double simulate_s = 0.0;    ///< vehicle dynamics and the sensors (ray casting)
+    double record_s = 0.0;      ///< the simulator's streams to the recording
+    double odometry_s = 0.0;    ///< the stack's sweeps: LiODOM and the increment's EKF update
+    double estimators_s = 0.0;  ///< IMU, range-finder, barometer and UWB updates of both EKFs
+    double command_s = 0.0;     ///< mission manager, collision prevention, height keeping
+    double log_s = 0.0;         ///< estimates, commands, events and metrics kept per tick
 };
 
 /// Figures of one run (also written to mission/summary.json).
@@ -72,6 +83,16 @@ struct MissionResult {
     std::size_t ranges_rejected = 0;
     std::size_t uwb_applied = 0;
     std::size_t uwb_rejected = 0;
+    std::size_t uwb_reacquisitions = 0;  ///< the global EKF re-opened after a run of refusals
+    std::size_t inputs_rejected = 0;     ///< non-finite samples dropped by the stack's screening
+    /// LiODOM's verdicts on the sweeps it was given: registered (ok + degenerate), of which
+    /// degenerate, and not registered (no edges, too few correspondences: motion model).
+    std::size_t odometry_registered = 0;
+    std::size_t odometry_degenerate = 0;
+    std::size_t odometry_unregistered = 0;
+    LoopTiming timing;
+    /// The camera coverage of the inspected rectangle, when the scenario asks (coverage_spec.hpp).
+    std::optional<perception::CoverageResult> coverage;
 };
 
 /// Runs the mission and writes its recording to `directory` (see the file comment). Throws

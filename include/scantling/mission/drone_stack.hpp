@@ -14,6 +14,16 @@
 ///                sweep kept for the safety layer;
 ///   range      → local EKF height above the floor; barometer → local EKF altitude;
 ///   UWB        → global EKF (global_ekf.hpp).
+/// Inputs are screened first: a sample with a non-finite value (or a sweep without one finite
+/// point) is dropped with an input_rejected event (once per episode of bad samples), so the
+/// estimators, which throw on such input, never see it.
+/// Stream watchdogs (safety/stream_watchdog.hpp) turn silence into events and a safe reaction:
+///   IMU silent > max_imu_age_s    → the estimate is invalid (it is no longer propagated): the
+///                                   manager hovers, and fails safe after its timeout;
+///   LiDAR silent > max_sweep_age_s → with collision prevention on, the vehicle holds: the
+///                                   stack pauses a running mission (resumed when sweeps come
+///                                   back, unless the operator acted meanwhile) and blocks
+///                                   any other motion, as PX4 does without obstacle data.
 /// Per command tick: the global estimate → mission manager (control/mission_manager.hpp:
 /// VTP follower and position PIDs) → collision prevention and height keeping on the latest
 /// sweep (safety/, in the body frame of the estimate) → command. A command is never NaN: the
@@ -39,20 +49,32 @@
 #include <scantling/planning/waypoints.hpp>
 #include <scantling/safety/collision_prevention.hpp>
 #include <scantling/safety/height_keeping.hpp>
+#include <scantling/safety/stream_watchdog.hpp>
 
 namespace scantling::mission {
 
+/// LiODOM as the drone flies it: the os1_drone preset with every direction weaker than 5 % of
+/// the strongest treated as degenerate. In the loop LiODOM always has the EKF's motion as its
+/// prior, so along such a direction (motion parallel to a prismatic hull: ratio ≈ 1e-3, where
+/// the preset's 1e-3 test misses it) the sweep keeps the IMU's motion and reports no
+/// information, instead of holding the estimate in place with centimetre confidence
+/// (docs/results.md, "Closed-loop hull-side sweep").
+odometry::LiodomConfig drone_odometry_defaults();
+
 struct DroneStackConfig {
-    odometry::LiodomConfig odometry{};
+    odometry::LiodomConfig odometry = drone_odometry_defaults();  ///< YAML: stack.odometry
     /// Point-to-line noise that turns LiODOM's JᵀWJ (unit noise) into 1/m², m, > 0. Larger
     /// than the LiDAR's range noise (≈ 3 cm): neighbouring residuals share the map's errors.
     double odometry_sigma_m = 0.1;
     /// Floor of one increment's uncertainty, m, > 0: thousands of residuals make JᵀWJ claim
     /// millimetres per sweep, but the map's own errors repeat from sweep to sweep. Applied to
-    /// the information's eigenvalues with rotations taken at `odometry_lever_m` (0.01 m at
-    /// 5 m: 2 mrad per sweep).
-    double odometry_min_sigma_m = 0.01;
-    double odometry_lever_m = 5.0;  ///< m per rad when comparing rotations with translations
+    /// the information's eigenvalues with rotations taken at `odometry_lever_m` metres per
+    /// radian: 3 cm and 2 mrad per sweep. Measured on `make run` (docs/results.md): 1 cm / 2 mrad
+    /// let a sweep sliding along the hull hold the estimate (0.150 m RMS, yaw 6.4°; 9 m with
+    /// the degeneracy test below); 3 cm / 6 mrad 0.082 m but yaw 3.6°; 3 cm / 2 mrad 0.096 m,
+    /// yaw 0.9°, NEES 2.6.
+    double odometry_min_sigma_m = 0.03;
+    double odometry_lever_m = 15.0;  ///< m per rad when comparing rotations with translations
     localization::LocalEkfConfig local_ekf{};
     /// 1σ of one barometer sample, m, > 0 (a flight controller's filtered altitude: 0.1 m of
     /// noise plus the propellers' downwash).
@@ -62,8 +84,12 @@ struct DroneStackConfig {
     safety::CollisionPreventionConfig collision{};
     bool height_keeping = true;
     safety::HeightKeepingConfig height{};
-    /// A sweep older than this gives the safety layer no data, s, > 0.
+    /// A sweep older than this gives the safety layer no data, s, > 0; the LiDAR is then lost
+    /// (three periods of a 10 Hz LiDAR whose sweep arrives one period after its stamp).
     double max_sweep_age_s = 0.3;
+    /// The IMU is lost (the estimate invalid) after this long without a sample, s, > 0: the
+    /// local EKF's own gap threshold (10 periods at 200 Hz).
+    double max_imu_age_s = 0.05;
     /// The estimate is declared invalid when its horizontal position σ exceeds this, m, > 0.
     double max_position_sigma_m = 2.0;
     control::MissionManagerConfig manager{};
@@ -92,8 +118,9 @@ class DroneStack {
                const Eigen::Isometry3d& T_world_body_start, double start_s = 0.0);
 
     void add_imu(const io::ImuRecord& sample);
-    /// A sweep in the LiDAR frame, stamped at its start. Returns LiODOM's report.
-    odometry::FrameReport add_sweep(const PointCloud& sweep_lidar, double stamp_s);
+    /// A sweep in the LiDAR frame, stamped at its start. Returns LiODOM's report, or nothing
+    /// for a rejected sweep (no finite point, non-finite stamp).
+    std::optional<odometry::FrameReport> add_sweep(const PointCloud& sweep_lidar, double stamp_s);
     void add_range(const io::RangeRecord& range);
     void add_barometer(const io::BarometerRecord& altitude);
     void add_uwb(const io::UwbRecord& range);
@@ -109,7 +136,16 @@ class DroneStack {
     const control::MissionManager& manager() const { return manager_; }
     const DroneStackConfig& config() const { return config_; }
 
+    /// Samples dropped by the input screening, all sensors.
+    std::size_t inputs_rejected() const { return inputs_rejected_; }
+
   private:
+    /// Counts a rejected sample; the first of an episode becomes an event.
+    void reject(const std::string& sensor, double stamp_s);
+    void accept(const std::string& sensor);
+    /// Watchdog transitions at `t_s` as events, and the operator commands the stack adds (the
+    /// LiDAR's pause and resume).
+    void watch_streams(double t_s, std::vector<control::OperatorCommand>& commands);
     std::optional<Eigen::Isometry3d> odometry_prior(double t0_s, double t1_s) const;
     void fuse_increment(const odometry::FrameReport& report, double stamp_s);
     Eigen::Vector3d apply_safety(const Eigen::Vector3d& v_world_mps, double t_s,
@@ -127,6 +163,12 @@ class DroneStack {
     Eigen::Isometry3d T_odom_body_previous_sweep_ = Eigen::Isometry3d::Identity();
     PointCloud latest_sweep_body_;
     std::optional<double> latest_sweep_stamp_s_;
+    safety::StreamWatchdog imu_watchdog_;
+    safety::StreamWatchdog lidar_watchdog_;
+    bool lidar_paused_ = false;           ///< the stack paused the mission for the LiDAR
+    std::vector<std::string> rejecting_;  ///< sensors inside an episode of rejected samples
+    std::size_t inputs_rejected_ = 0;
+    std::vector<control::MissionEvent> pending_events_;  ///< returned by the next command
 };
 
 }  // namespace scantling::mission

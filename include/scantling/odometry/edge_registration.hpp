@@ -75,7 +75,9 @@ struct EdgeRegistrationResult {
     int iterations = 0;
     std::size_t num_correspondences = 0;
     double rmse_m = 0.0;  ///< of the unweighted point-to-line distances of the inliers
-    /// JᵀWJ at the solution, (ρ, ω) order as se3_exp (rotation in rad, not scaled).
+    /// JᵀWJ at the solution, (ρ, ω) order as se3_exp (rotation in rad, not scaled). With
+    /// `remap_degenerate`, without its degenerate directions: the pose there is the initial
+    /// one, not a measurement (a filter fusing it must not count the prior twice).
     Matrix6d information = Matrix6d::Zero();
     /// Eigenvalues of the scaled information, ascending, and how many are degenerate.
     Vector6d eigenvalues = Vector6d::Zero();

@@ -29,6 +29,10 @@
 #include <scantling/odometry/edge_registration.hpp>
 #include <scantling/odometry/local_map.hpp>
 
+namespace scantling::io {
+struct ConfigNode;
+}  // namespace scantling::io
+
 namespace scantling::odometry {
 
 struct LiodomConfig {
@@ -184,6 +188,9 @@ std::vector<std::string> liodom_preset_names();
 /// Loads a YAML config: `preset: NAME` (optional, default kitti) then overrides of any field
 /// ("features.max_range_m: 30"). Errors name the file, line and key.
 LiodomConfig load_liodom_config(const std::string& path);
+/// The same for a parsed YAML node (a section of a larger file, e.g. a mission scenario's
+/// `stack.odometry`) applied over `base`, or over the preset the node names.
+LiodomConfig liodom_config_from_node(const io::ConfigNode& node, const LiodomConfig& base);
 /// Every field with its value and documentation, as YAML (for --print-config and the docs).
 std::string describe_liodom_config(const LiodomConfig& config);
 

@@ -24,6 +24,7 @@
 #include <scantling/sim/lawnmower_trajectory.hpp>
 #include <scantling/sim/legged_base.hpp>
 #include <scantling/sim/mav_dynamics.hpp>
+#include <scantling/sim/moving_obstacles.hpp>
 #include <scantling/sim/rov_dynamics.hpp>
 #include <scantling/sim/trajectory.hpp>
 #include <scantling/sim/uwb.hpp>
@@ -209,9 +210,13 @@ struct Scenario {
     std::uint64_t seed = 1;   ///< root of every random stream (vehicle, sensors, map sampling)
     ExportSpec export_world{};
     ParallelConfig parallel{};  ///< threads for ray casting (results do not depend on it)
+    /// Spheres and boxes moving through the world, seen by every ray-casting sensor
+    /// (moving_obstacles.hpp); not written to the recording.
+    std::vector<MovingObstacle> moving_obstacles;
     /// Folder of the scenario file: `world.mesh.path` is relative to it.
     std::string base_directory;
-    /// Throws ConfigError naming the field ("duration_s = -1, expected >= 0", "sensors[1]..."),
+    /// Throws ConfigError naming the field ("duration_s = -1, expected >= 0", "sensors[1]...",
+    /// "moving_obstacles[0].radius_m = 0, expected finite > 0"),
     /// also for a value over its bound (scenario_limits.hpp), a world whose repeated structure
     /// multiplies past limits::kMaxWorldElements, a sensor faster than the clock (its
     /// effective rate above 1 / dt_s: the clock fires a sensor at most once per tick, so it

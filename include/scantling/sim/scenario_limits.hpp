@@ -60,6 +60,8 @@ inline constexpr std::int64_t kMaxWorldElements = 100'000;
 inline constexpr int kMaxUrbanBlocks = 32;  ///< urban blocks_x and blocks_y
 inline constexpr int kMaxDefects = 10'000;  ///< defects.count
 inline constexpr std::size_t kMaxWaypoints = 10'000;
+/// Moving obstacles: each is tested against every ray of every sensor (no acceleration structure).
+inline constexpr std::size_t kMaxMovingObstacles = 256;
 inline constexpr double kMaxTurns = 10'000.0;      ///< helix rotations, orbit turns
 inline constexpr double kMaxMeshScale = 10'000.0;  ///< mesh file units to metres
 /// CAD-map spacing: the map has area / spacing² points (core caps it at 1e9 points).

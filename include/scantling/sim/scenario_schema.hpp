@@ -10,7 +10,8 @@
 /// Besides the table-driven checks (unknown keys, wrong types, ranges: ParseError naming file,
 /// line and key), `check_scenario_document` enforces what a table cannot: only the section of
 /// the selected `type` may appear (`world.storage_tank` next to `type: cylinder` is an error),
-/// sensor keys must apply to the sensor's type, and a preset must belong to the type.
+/// sensor keys must apply to the sensor's type, a preset must belong to the type, and a moving
+/// obstacle's size key must match its shape (`radius_m` for a sphere, `half_extents_m` for a box).
 ///
 /// Thread-safety: the schema is built once (function-local static) and immutable.
 
@@ -56,6 +57,10 @@ const io::ConfigSchema<WorldSpec>& world_spec_schema();
 const io::ConfigSchema<VehicleSpec>& vehicle_spec_schema();
 const io::ConfigSchema<SensorSpec>& sensor_spec_schema();
 const io::ConfigSchema<PoseSpec>& pose_spec_schema();
+const io::ConfigSchema<MovingObstacle>& moving_obstacle_schema();
+/// ParseError for a size key of the other shape ("moving_obstacles[0].half_extents_m: does not
+/// apply to shape 'sphere'").
+void check_moving_obstacle(const io::ConfigNode& item, const std::string& path);
 }  // namespace detail
 
 }  // namespace scantling::sim

@@ -13,6 +13,9 @@
 /// sweep once it is complete. `start()` returns the readings of tick 0 (t = 0) and must come
 /// first.
 ///
+/// Moving obstacles (scenario.moving_obstacles) move on their own clock-time paths whatever the
+/// vehicle does; each firing sees them where they are at its stamp (sensor_mount.hpp).
+///
 /// The scenario's trajectory is not flown: only its start pose is used (the robot's own
 /// controllers decide the motion). Scripted, legged and crawler vehicles are refused (their
 /// motion is not a velocity command to a free body).
@@ -29,6 +32,7 @@
 #include <vector>
 
 #include <scantling/sim/motion_state.hpp>
+#include <scantling/sim/moving_obstacles.hpp>
 #include <scantling/sim/scenario.hpp>
 #include <scantling/sim/sensor_mount.hpp>
 #include <scantling/sim/sensor_reading.hpp>
@@ -71,8 +75,12 @@ class Simulator {
     std::int64_t tick() const;
     const MotionState& truth() const;
     const World& world() const;
+    /// The world as the sensors see it, with the moving obstacles placed at now_s().
     const SceneView& scene() const;
     const Scenario& scenario() const;
+    /// The scenario's moving obstacles (validated), e.g. for the true distance from the
+    /// vehicle to one at any time: `moving_obstacles()[i].distance_m(p_world, t_s)`.
+    const MovingObstacles& moving_obstacles() const;
     /// Sensor i's nominal rate, Hz (as in summary.json).
     double sensor_rate_hz(std::size_t i) const;
 

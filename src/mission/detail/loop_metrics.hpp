@@ -8,6 +8,7 @@
 #include <scantling/core/point_cloud.hpp>
 #include <scantling/localization/local_ekf.hpp>
 #include <scantling/mission/closed_loop.hpp>
+#include <scantling/odometry/liodom.hpp>
 #include <scantling/planning/waypoints.hpp>
 #include <scantling/sim/motion_state.hpp>
 
@@ -22,6 +23,7 @@ class LoopMetrics {
     LoopMetrics(const planning::WaypointPath& path, const Eigen::Vector3d& p_start_world_m);
 
     void add_sweep(const PointCloud& sweep_sensor);
+    void add_odometry(const std::optional<odometry::FrameReport>& report);
     void add_tick(const sim::MotionState& truth, const localization::DroneState& estimate,
                   const StackCommand& command, double t_s);
     MissionResult result(control::MissionState final_state) const;
@@ -45,6 +47,9 @@ class LoopMetrics {
     std::size_t interventions_ = 0;
     double min_obstacle_m_ = std::numeric_limits<double>::infinity();
     std::size_t sweeps_ = 0;
+    std::size_t odometry_registered_ = 0;
+    std::size_t odometry_degenerate_ = 0;
+    std::size_t odometry_unregistered_ = 0;
     std::optional<double> started_s_;
     std::optional<double> completed_s_;
     double last_t_s_ = 0.0;

@@ -54,7 +54,7 @@ PointCloud cast_schedule(const SceneView& scene, const BeamSchedule& schedule,
     check_poses(schedule, T_world_sensor_per_firing);
     const std::vector<Ray> rays =
         build_rays(schedule, T_world_sensor_per_firing, settings.max_range_m);
-    const std::vector<RayHit> hits = scene.caster.cast_batch(rays, parallel);
+    const std::vector<RayHit> hits = scene.cast_batch(rays, parallel);
     PointCloud cloud = empty_cloud(schedule, stamp_s);
     for (std::size_t i = 0; i < hits.size(); ++i) {
         const RayHit& hit = hits[i];

@@ -1,7 +1,9 @@
 #pragma once
-// Scenario checks that a key range cannot express (scenario_world_size.cpp).
+// Scenario checks that a key range cannot express (scenario_world_size.cpp,
+// scenario_schema_obstacles.cpp).
 
 #include <string_view>
+#include <vector>
 
 #include <scantling/sim/scenario.hpp>
 
@@ -12,5 +14,11 @@ namespace scantling::sim::detail {
 /// limits::kMaxWorldElements, and a plate stiffener spacing that is neither 0 nor at least
 /// limits::kMinStructureSpacing_m. Call after the world's own validate().
 void check_world_size(const WorldSpec& spec, std::string_view prefix);
+
+/// Throws ConfigError for more than limits::kMaxMovingObstacles obstacles (each is tested
+/// against every ray), more than limits::kMaxWaypoints waypoints in one, or an invalid or
+/// repeated obstacle (MovingObstacles::validate, items named "<list_key>[i]").
+void check_moving_obstacles(const std::vector<MovingObstacle>& obstacles,
+                            std::string_view list_key);
 
 }  // namespace scantling::sim::detail

@@ -1,0 +1,94 @@
+// Sensor faults between the simulator and the stack (fault_injection.hpp).
+#include <scantling/mission/fault_injection.hpp>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <scantling/core/config_checks.hpp>
+#include <scantling/core/error.hpp>
+
+namespace scantling::mission {
+namespace {
+
+constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
+
+/// The sensors whose readings the drone stack consumes, hence the ones a NaN fault can poison.
+bool poisonable(sim::SensorType type) {
+    using T = sim::SensorType;
+    return type == T::kSpinningLidar || type == T::kImu || type == T::kRangeFinder ||
+           type == T::kBarometer || type == T::kUwb;
+}
+
+bool inside(const SensorFault& f, double t_s) {
+    return t_s >= f.start_s && t_s < f.start_s + f.duration_s;
+}
+
+}  // namespace
+
+std::string_view to_string(FaultKind kind) { return kind == FaultKind::kNan ? "nan" : "dropout"; }
+
+void SensorFault::validate(std::string_view prefix) const {
+    config_checks::require(std::isfinite(start_s) && start_s >= 0.0, prefix, "start_s", start_s,
+                           "finite >= 0 (seconds of simulated time)");
+    config_checks::require(std::isfinite(duration_s) && duration_s > 0.0, prefix, "duration_s",
+                           duration_s, "finite > 0 (seconds)");
+    if (kind == FaultKind::kNan && !poisonable(sensor)) {
+        throw ConfigError(fmt::format(
+            "{}.kind = nan for a {} sensor: NaN faults apply to the drone stack's inputs "
+            "(spinning_lidar, imu, range_finder, barometer, uwb); use dropout",
+            prefix, sim::to_string(sensor)));
+    }
+}
+
+FaultInjector::FaultInjector(std::vector<SensorFault> faults,
+                             std::vector<sim::SensorType> sensor_types)
+    : faults_(std::move(faults)), sensor_types_(std::move(sensor_types)), phase_(faults_.size()) {
+    for (std::size_t i = 0; i < faults_.size(); ++i) {
+        faults_[i].validate(fmt::format("faults[{}]", i));
+    }
+}
+
+const SensorFault* FaultInjector::fault_of(const sim::SensorReading& reading) const {
+    if (reading.sensor_index >= sensor_types_.size()) return nullptr;
+    const sim::SensorType type = sensor_types_[reading.sensor_index];
+    const auto it = std::find_if(faults_.begin(), faults_.end(), [&](const SensorFault& f) {
+        return f.sensor == type && inside(f, reading.stamp_s);
+    });
+    return it == faults_.end() ? nullptr : &*it;
+}
+
+std::vector<FaultChange> FaultInjector::changes(double t_s) {
+    std::vector<FaultChange> out;
+    for (std::size_t i = 0; i < faults_.size(); ++i) {
+        if (phase_[i] == 0 && t_s >= faults_[i].start_s) {
+            phase_[i] = 1;
+            out.push_back({i, true});
+        }
+        if (phase_[i] == 1 && t_s >= faults_[i].start_s + faults_[i].duration_s) {
+            phase_[i] = 2;
+            out.push_back({i, false});
+        }
+    }
+    return out;
+}
+
+sim::SensorReading poisoned(sim::SensorReading reading) {
+    if (auto* imu = std::get_if<sim::ImuSample>(&reading.data)) {
+        imu->specific_force_mps2.setConstant(kNan);
+        imu->angular_rate_radps.setConstant(kNan);
+    } else if (auto* range = std::get_if<sim::RangeMeasurement>(&reading.data)) {
+        range->range_m = kNan;
+    } else if (auto* baro = std::get_if<sim::BarometerSample>(&reading.data)) {
+        baro->altitude_m = kNan;
+    } else if (auto* uwb = std::get_if<sim::UwbMeasurement>(&reading.data)) {
+        for (sim::UwbRange& r : uwb->ranges) r.range_m = kNan;
+    } else if (auto* lidar = std::get_if<sim::LidarReading>(&reading.data)) {
+        for (Eigen::Vector3d& p : lidar->sweep.points) p.setConstant(kNan);
+    }
+    return reading;
+}
+
+}  // namespace scantling::mission
