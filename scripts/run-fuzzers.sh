@@ -45,7 +45,9 @@ build() {
     -DSCANTLING_FUZZ=ON -DSCANTLING_SANITIZE=address,undefined,unsigned-integer-overflow \
     -DSCANTLING_PCH=OFF \
     -DSCANTLING_BUILD_TESTS=OFF > "$fuzz_dir/configure.log"
-  cmake --build "$fuzz_dir" -j "$jobs" --target scantling_fuzzers
+  # Only the targets asked for: the config target alone pulls odometry, localization,
+  # registration, perception and mapping into this tree.
+  cmake --build "$fuzz_dir" -j "$jobs" --target "${targets[@]/%/_fuzz}"
 }
 
 seeds() { fuzz/make_seeds.sh "$fuzz_dir/seeds" "$cli"; }

@@ -71,7 +71,12 @@ MissionTick MissionManager::update(const EstimatedState& estimate, double t_s,
     MissionTick tick;
     const bool valid = track_estimate(estimate, tick);
     for (const OperatorCommand& command : commands) apply(command, tick);
-    if (dt_s > 0.0 && (valid || state_ == State::kOperator)) command_vehicle(estimate, dt_s, tick);
+    if (dt_s > 0.0 && (valid || state_ == State::kOperator)) {
+        command_vehicle(estimate, dt_s, tick);
+    } else if (dt_s > 0.0 && p_invalid_hold_world_m_ && estimate.holdable && is_finite(estimate) &&
+               state_ != State::kIdle) {
+        hold(estimate, *p_invalid_hold_world_m_, dt_s, tick);
+    }
     replace_non_finite(tick);
     tick.state = state_;
     return tick;
@@ -80,10 +85,14 @@ MissionTick MissionManager::update(const EstimatedState& estimate, double t_s,
 bool MissionManager::track_estimate(const EstimatedState& estimate, MissionTick& tick) {
     if (estimate.valid && is_finite(estimate)) {
         invalid_since_t_s_.reset();
+        p_invalid_hold_world_m_.reset();
         last_valid_p_world_m_ = estimate.p_world_m;
         return true;
     }
     const std::string why = estimate.valid ? "non-finite" : "marked invalid";
+    if (!p_invalid_hold_world_m_ && estimate.holdable && is_finite(estimate)) {
+        p_invalid_hold_world_m_ = estimate.p_world_m;  // where the hold starts, on the estimate
+    }
     if (!invalid_since_t_s_) {
         invalid_since_t_s_ = t_s_;
         tick.events.push_back(

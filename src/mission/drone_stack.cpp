@@ -264,8 +264,13 @@ StackCommand DroneStack::command(double t_s,
     const control::EstimatedState estimate{.p_world_m = state.T_odom_body.translation(),
                                            .yaw_rad = yaw_of(state.T_odom_body.linear()),
                                            .v_world_mps = state.v_odom_mps,
-                                           .valid = estimate_valid() && !imu_watchdog_.lost()};
+                                           .valid = estimate_valid() && !imu_watchdog_.lost(),
+                                           .holdable = !imu_watchdog_.lost()};
     control::MissionTick tick = manager_.update(estimate, t_s, commands);
+    // A rejected sample may not even have a finite stamp: such events take the tick's time.
+    for (control::MissionEvent& e : pending_events_) {
+        if (!std::isfinite(e.t_s)) e.t_s = t_s;
+    }
     tick.events.insert(tick.events.begin(), pending_events_.begin(), pending_events_.end());
     pending_events_.clear();
     StackCommand out{.v_world_mps = tick.v_cmd_world_mps,
@@ -275,7 +280,12 @@ StackCommand DroneStack::command(double t_s,
                      .collision = std::nullopt,
                      .state = tick.state,
                      .events = std::move(tick.events)};
-    if (estimate.valid) out.v_world_mps = apply_safety(out.v_requested_world_mps, t_s, out);
+    // The safety layer needs only the attitude (levelled by gravity, valid even when the
+    // position is lost): a failsafe's zero command still drifts downwind, and the repulsion
+    // keeps that drift off the structure.
+    if (state.T_odom_body.linear().allFinite()) {
+        out.v_world_mps = apply_safety(out.v_requested_world_mps, t_s, out);
+    }
     out.limited = (out.v_world_mps - out.v_requested_world_mps).norm() > 1e-9;
     if (!out.v_world_mps.allFinite() || !std::isfinite(out.yaw_rate_radps)) {
         out.events.push_back({.type = control::MissionEventType::kCommandReplaced,

@@ -237,6 +237,26 @@ TEST(MissionManager, AbortHoversWhereItAbortedAndRefusesToContinue) {
     EXPECT_EQ(flight.manager.state(), State::kAborted);
 }
 
+TEST(MissionManager, AHoldableInvalidEstimateHoldsWhereItFailedThroughTheFailsafe) {
+    Flight flight = flying_mid_leg();
+    EstimatedState uncertain = flight.estimate();
+    uncertain.valid = false;  // the world position's σ grew, the IMU still runs
+    uncertain.holdable = true;
+    const Eigen::Vector3d p_fail = uncertain.p_world_m;
+    MissionTick tick = flight.step_with(uncertain, {});
+    EXPECT_EQ(tick.events[0].type, MissionEventType::kEstimateInvalid);
+    // Pushed 0.3 m off the point (a gust), the hold pulls back towards it, in the failsafe too.
+    uncertain.p_world_m = p_fail + Eigen::Vector3d(0.3, 0.0, 0.0);
+    for (int i = 0; i < 200; ++i) tick = flight.step_with(uncertain, {});
+    EXPECT_EQ(flight.manager.state(), State::kFailsafe);
+    EXPECT_LT(tick.v_cmd_world_mps.x(), -0.1);
+    EXPECT_NEAR(tick.v_cmd_world_mps.y(), 0.0, 1e-9);
+    // Not holdable (the IMU is gone): zero velocity.
+    uncertain.holdable = false;
+    tick = flight.step_with(uncertain, {});
+    EXPECT_EQ(tick.v_cmd_world_mps, Eigen::Vector3d::Zero());
+}
+
 TEST(MissionManager, NanEstimateHoversThenEntersTheFailsafeWithoutANanCommand) {
     Flight flight = flying_mid_leg();  // estimate_timeout_s = 0.5
     EstimatedState lost = flight.estimate();

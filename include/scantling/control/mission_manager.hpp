@@ -39,10 +39,12 @@
 /// integrals and derivative histories belong to the previous target and time step.
 ///
 /// Estimate: an estimate not `valid` or with a non-finite field is ignored; while it lasts
-/// (and the operator has not taken over) the command is zero velocity (hover), and once it has
-/// lasted estimate_timeout_s the manager enters kFailsafe. The command is checked last: a
-/// non-finite one is replaced by zero with a kCommandReplaced event, so no NaN ever leaves.
-/// The first tick has no time step: it commands zero velocity whatever the state.
+/// (and the operator has not taken over) the command is zero velocity (hover), or, when the
+/// estimate is `holdable` and finite, the position hold at the point where it became invalid;
+/// once it has lasted estimate_timeout_s the manager enters kFailsafe (which holds likewise). The
+/// command is checked last: a non-finite one is replaced by zero with a kCommandReplaced event, so
+/// no NaN ever leaves. The first tick has no time step: it commands zero velocity whatever the
+/// state.
 ///
 /// Frames: world (z up; metres, m/s, radians); the yaw rate is about world z.
 /// Thread-safety: mutable; one instance per vehicle, ticked from one thread. Cost: O(1) per
@@ -105,6 +107,11 @@ struct EstimatedState {
     double yaw_rad = 0.0;  ///< about world z
     Eigen::Vector3d v_world_mps = Eigen::Vector3d::Zero();
     bool valid = true;  ///< the estimator's own verdict (e.g. localisation lost)
+    /// Invalid as an absolute position, yet its motion over seconds is still good (the IMU
+    /// runs; only the world position's uncertainty grew): the manager then holds the position
+    /// where the estimate became invalid, on it, instead of commanding zero velocity, which
+    /// in wind is a drift downwind (0.54 m/s in 5 m/s with the simulator's drag).
+    bool holdable = false;
 };
 
 enum class MissionEventType {
@@ -191,6 +198,8 @@ class MissionManager {
     Eigen::Vector3d p_hold_world_m_ = Eigen::Vector3d::Zero();
     std::optional<double> last_t_s_;
     std::optional<double> invalid_since_t_s_;
+    /// Where an invalid but holdable estimate holds the vehicle (EstimatedState::holdable).
+    std::optional<Eigen::Vector3d> p_invalid_hold_world_m_;
     double t_s_ = 0.0;
 };
 
