@@ -174,5 +174,72 @@ TEST(GlobalEkf, InvalidConfigNamesTheField) {
     expect_field(c, "uwb_anchors_world_m[3]");
 }
 
+/// A still body (local: at p_odom, or moving at v_odom_mps from it) and UWB ranges from the
+/// true world position `p_world_true_m`, every 0.01 s, cycling over the anchors.
+struct StillBodyRun {
+    Eigen::Vector3d p_odom_m = Eigen::Vector3d(0.0, 0.0, 1.0);
+    Eigen::Vector3d v_odom_mps = Eigen::Vector3d::Zero();  ///< the local's (wrong) velocity
+    Eigen::Vector3d p_world_true_m = Eigen::Vector3d(0.0, 0.0, 1.0);
+
+    void fly(GlobalEkf& global, double duration_s) const {
+        DroneState local;
+        local.covariance = 1e-4 * Matrix9d::Identity();
+        const auto& anchors = global.config().uwb_anchors_world_m;
+        for (int k = 0; k * 0.01 < duration_s; ++k) {
+            local.stamp_s = k * 0.01;
+            local.T_odom_body.translation() = p_odom_m + v_odom_mps * local.stamp_s;
+            local.v_odom_mps = v_odom_mps;
+            global.add_local(local);
+            const int id = 1 + k % 4;
+            const double range_m = (p_world_true_m - anchors.at(id)).norm();
+            global.update_uwb({local.stamp_s, id, range_m, true, true});
+        }
+    }
+};
+
+GlobalEkfConfig still_config() {
+    GlobalEkfConfig c = uwb_config();
+    c.p_body_uwb_tag_m.setZero();
+    return c;
+}
+
+TEST(GlobalEkf, ReacquiresWhenEveryAnchorDisagreesWithItsOwnConfidentEstimate) {
+    // The filter believes the body at (0, 0, 1) with 5 cm of σ; it is truly 3 m away: every
+    // range fails the gate. After the window (50 ranges) the covariance re-opens.
+    StillBodyRun run;
+    run.p_world_true_m = Eigen::Vector3d(3.0, 0.0, 1.0);
+    GlobalEkf global(still_config(), Eigen::Isometry3d::Identity());
+    run.fly(global, 3.0);
+    EXPECT_GE(global.counters().uwb_reacquisitions, 1u);
+    EXPECT_LT((global.state().T_odom_body.translation() - run.p_world_true_m).norm(), 0.05);
+    // Without re-acquisition the gate keeps the ranges out until the drift velocity's random
+    // walk has grown the covariance enough: still 0.95 m off after 3 s.
+    GlobalEkfConfig never = still_config();
+    never.uwb_reacquire_window = 0;
+    GlobalEkf locked(never, Eigen::Isometry3d::Identity());
+    run.fly(locked, 3.0);
+    EXPECT_EQ(locked.counters().uwb_reacquisitions, 0u);
+    EXPECT_GT((locked.state().T_odom_body.translation() - run.p_world_true_m).norm(), 0.5);
+}
+
+TEST(GlobalEkf, EstimatesTheLocalFiltersVelocityErrorAsTheDriftVelocity) {
+    // The local filter believes it moves at 0.3 m/s along x (an unobserved velocity error);
+    // the body is still. UWB sees it still: the world output's velocity goes to zero.
+    StillBodyRun run;
+    run.v_odom_mps = Eigen::Vector3d(0.3, 0.0, 0.0);
+    GlobalEkf global(still_config(), Eigen::Isometry3d::Identity());
+    run.fly(global, 20.0);
+    const DroneState world = global.state();
+    EXPECT_LT(world.v_odom_mps.norm(), 0.05);
+    EXPECT_NEAR(global.drift_velocity_mps().x(), -0.3, 0.05);
+    EXPECT_LT((world.T_odom_body.translation() - run.p_world_true_m).norm(), 0.05);
+    // Without the drift velocity the output keeps the local's 0.3 m/s.
+    GlobalEkfConfig fixed = still_config();
+    fixed.drift_velocity_random_walk_mps_per_sqrt_s = 0.0;
+    GlobalEkf without(fixed, Eigen::Isometry3d::Identity());
+    run.fly(without, 20.0);
+    EXPECT_NEAR(without.state().v_odom_mps.x(), 0.3, 0.01);
+}
+
 }  // namespace
 }  // namespace scantling::localization
