@@ -229,6 +229,7 @@ bool DroneStack::estimate_valid() const {
 
 void DroneStack::watch_streams(double t_s, std::vector<control::OperatorCommand>& commands) {
     for (safety::StreamWatchdog* watchdog : {&imu_watchdog_, &lidar_watchdog_}) {
+        if (watchdog == &lidar_watchdog_ && !config_.lidar_expected) continue;
         const auto change = watchdog->check(t_s);
         if (!change) continue;
         const bool lost = change->change == safety::StreamChange::kLost;
@@ -243,7 +244,7 @@ void DroneStack::watch_streams(double t_s, std::vector<control::OperatorCommand>
     }
     // The operator's own commands take precedence over the stack's pause and resume.
     if (!commands.empty()) lidar_paused_ = false;
-    if (!config_.collision_prevention) return;
+    if (!config_.collision_prevention || !config_.lidar_expected) return;
     if (lidar_watchdog_.lost() && commands.empty() && moving(manager_.state())) {
         commands.push_back({.type = control::OperatorCommandType::kPause});
         lidar_paused_ = true;
@@ -305,9 +306,11 @@ Eigen::Vector3d DroneStack::apply_safety(const Eigen::Vector3d& v_world_mps, dou
         latest_sweep_stamp_s_ && t_s - *latest_sweep_stamp_s_ <= config_.max_sweep_age_s;
     // No obstacle data: no motion at all once the LiDAR has been lost (before its first sweep
     // the vehicle is on the ground and the manager commands nothing).
-    if (!fresh)
-        return lidar_watchdog_.lost() && config_.collision_prevention ? Eigen::Vector3d::Zero()
-                                                                      : v_world_mps;
+    if (!fresh) {
+        const bool blocked =
+            lidar_watchdog_.lost() && config_.collision_prevention && config_.lidar_expected;
+        return blocked ? Eigen::Vector3d::Zero() : v_world_mps;
+    }
     const Eigen::Matrix3d R_world_body = global_.state().T_odom_body.linear();
     Eigen::Vector3d v = v_world_mps;
     if (config_.collision_prevention) {

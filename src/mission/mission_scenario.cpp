@@ -230,7 +230,9 @@ CoverageSpec coverage_from_yaml(const io::ConfigNode& node, const io::ConfigNode
 
 /// The robot knows its own mounts and the surveyed UWB anchors.
 void calibrate(MissionScenario& m) {
+    m.stack.lidar_expected = false;
     for (const sim::SensorSpec& sensor : m.simulation.sensors) {
+        if (sensor.type == sim::SensorType::kSpinningLidar) m.stack.lidar_expected = true;
         const Eigen::Isometry3d mount = sensor.T_body_sensor.to_isometry();
         if (sensor.type == sim::SensorType::kSpinningLidar) m.stack.T_body_lidar = mount;
         if (sensor.type == sim::SensorType::kImu) m.stack.local_ekf.T_body_imu = mount;

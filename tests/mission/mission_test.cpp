@@ -30,6 +30,13 @@ TEST(MissionScenario, ReadsTheDefaultJobAndCalibratesTheStack) {
     EXPECT_EQ(m.path.waypoints.size(), 8u);  // 4 lines over 3 m, both ends
     EXPECT_NEAR(m.stack.T_body_lidar.translation().z(), 0.1, 1e-12);
     EXPECT_EQ(m.stack.global_ekf.uwb_anchors_world_m.size(), 5u);
+    EXPECT_TRUE(m.stack.lidar_expected);
+    // Without a LiDAR its silence is no fault: the stack neither pauses nor blocks for it.
+    std::string no_lidar = kGoTo;
+    const std::string lidar_line =
+        "    - {type: spinning_lidar, columns: 512, T_body_sensor: {xyz: [0.0, 0.0, 0.1]}}\n";
+    no_lidar.erase(no_lidar.find(lidar_line), lidar_line.size());
+    EXPECT_FALSE(parse_mission_scenario(no_lidar).stack.lidar_expected);
     EXPECT_NEAR(m.stack.local_ekf.floor_height_m, -3.5, 1e-12);  // floor −1.5, start z 2
     // The ranger's beam (sim: +x) becomes the EKF's ray (+z): pointing down.
     const Eigen::Vector3d ray = m.stack.local_ekf.T_body_sensor.linear() * Eigen::Vector3d::UnitZ();

@@ -90,6 +90,9 @@ struct DroneStackConfig {
     /// The IMU is lost (the estimate invalid) after this long without a sample, s, > 0: the
     /// local EKF's own gap threshold (10 periods at 200 Hz).
     double max_imu_age_s = 0.05;
+    /// The vehicle carries the LiDAR (set from the sensors by a mission scenario): only then
+    /// does its silence pause the mission and block motion.
+    bool lidar_expected = true;
     /// The estimate is declared invalid when its horizontal position σ exceeds this, m, > 0.
     double max_position_sigma_m = 2.0;
     control::MissionManagerConfig manager{};
