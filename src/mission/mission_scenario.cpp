@@ -102,13 +102,9 @@ const io::ConfigSchema<RecordedPointSpec>& recorded_point_schema() {
 const io::ConfigSchema<SensorFault>& fault_schema() {
     using S = SensorFault;
     static const io::ConfigSchema<S> schema = [] {
-        std::vector<std::pair<std::string, sim::SensorType>> sensors;
-        for (int i = 0; i <= static_cast<int>(sim::SensorType::kBarometer); ++i) {
-            const auto type = static_cast<sim::SensorType>(i);
-            sensors.emplace_back(std::string(sim::to_string(type)), type);
-        }
         io::ConfigSchema<S> s;
-        s.enum_field("sensor", &S::sensor, sensors, "every simulated sensor of this type")
+        s.enum_field("sensor", &S::sensor, sim::detail::sensor_type_choices(),
+                     "every simulated sensor of this type")
             .enum_field("kind", &S::kind,
                         {{"dropout", FaultKind::kDropout}, {"nan", FaultKind::kNan}},
                         "no readings, or readings of NaNs")

@@ -158,11 +158,15 @@ ConfigSchema<ParallelConfig> parallel_schema() {
 
 }  // namespace
 
+const std::vector<std::pair<std::string, SensorType>>& sensor_type_choices() {
+    return kSensorTypes;
+}
+
 const ConfigSchema<SensorSpec>& sensor_spec_schema() {
     static const ConfigSchema<SensorSpec> schema = [] {
         using S = SensorSpec;
         ConfigSchema<S> s;
-        s.enum_field("type", &S::type, kSensorTypes)
+        s.enum_field("type", &S::type, sensor_type_choices())
             .enum_field("preset", &S::preset, kPresets, "model; default: the type's first")
             .field("rate_hz", &S::rate_hz, "0 = the preset's rate; at most 1 / dt_s",
                    up_to(limits::kMaxRate_hz))

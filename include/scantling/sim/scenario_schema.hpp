@@ -15,6 +15,10 @@
 ///
 /// Thread-safety: the schema is built once (function-local static) and immutable.
 
+#include <string>
+#include <utility>
+#include <vector>
+
 #include <scantling/io/config_node.hpp>
 #include <scantling/io/config_schema.hpp>
 #include <scantling/sim/scenario.hpp>
@@ -57,6 +61,8 @@ const io::ConfigSchema<WorldSpec>& world_spec_schema();
 const io::ConfigSchema<VehicleSpec>& vehicle_spec_schema();
 const io::ConfigSchema<SensorSpec>& sensor_spec_schema();
 const io::ConfigSchema<PoseSpec>& pose_spec_schema();
+/// Every sensor type with its YAML name (`type:` of a sensor; a mission's `faults[].sensor`).
+const std::vector<std::pair<std::string, SensorType>>& sensor_type_choices();
 const io::ConfigSchema<MovingObstacle>& moving_obstacle_schema();
 /// ParseError for a size key of the other shape ("moving_obstacles[0].half_extents_m: does not
 /// apply to shape 'sphere'").
