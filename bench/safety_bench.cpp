@@ -5,6 +5,8 @@
 // `naive_spec` transcribes SPEC §3 literally: per point the two frustum angles by atan2 and
 // the range, every in-frustum range and every repulsion vector stored in a vector, then the
 // min and the mean. Both must agree (checked before timing). Target: ≤ 1 ms per sweep.
+// `gather` is safety::gather_obstacle_points, run once per sweep by the drone stack, and
+// `gathered` prevent_collision on its output, run once per command (obstacle_points.hpp).
 // Results in docs/benchmarks.md, "Safety: collision prevention (issue 13 item 3)".
 #include <algorithm>
 #include <cmath>
@@ -21,6 +23,7 @@
 
 #include <scantling/core/random.hpp>
 #include <scantling/safety/collision_prevention.hpp>
+#include <scantling/safety/obstacle_points.hpp>
 
 #include "bench_support.hpp"
 
@@ -114,8 +117,13 @@ void check_agreement(const PointCloud& sweep) {
                sweep.size(), ours.num_valid_points, ours.num_frustum_points,
                ours.num_points_within_d_min, safety::describe(ours, config));
     const double gap = (ours.v_cmd_body_mps - naive.v_cmd).norm();
+    const auto obstacles = safety::gather_obstacle_points(sweep, config);
+    const auto gathered = safety::prevent_collision(kDesired, obstacles, config);
+    fmt::print("gathered once per sweep: {} of {} points within {:.2f} m\n",
+               obstacles.points_body.size(), sweep.size(), obstacles.reach_m);
     if (gap > 1e-9 || ours.num_frustum_points != naive.in_frustum ||
-        ours.num_points_within_d_min != naive.repelling) {
+        ours.num_points_within_d_min != naive.repelling ||
+        gathered.v_cmd_body_mps != ours.v_cmd_body_mps) {
         fmt::print(stderr, "safety_bench: ours and naive_spec disagree ({} m/s)\n", gap);
         std::exit(1);
     }
@@ -128,6 +136,26 @@ void bench_ours(benchmark::State& state, const PointCloud* sweep) {
         benchmark::DoNotOptimize(result);
     }
     state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(sweep->size()));
+}
+
+void bench_gather(benchmark::State& state, const PointCloud* sweep) {
+    const safety::CollisionPreventionConfig config;
+    for (auto _ : state) {
+        auto obstacles = safety::gather_obstacle_points(*sweep, config);
+        benchmark::DoNotOptimize(obstacles);
+    }
+    state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(sweep->size()));
+}
+
+void bench_gathered(benchmark::State& state, const PointCloud* sweep) {
+    const safety::CollisionPreventionConfig config;
+    const auto obstacles = safety::gather_obstacle_points(*sweep, config);
+    for (auto _ : state) {
+        auto result = safety::prevent_collision(kDesired, obstacles, config);
+        benchmark::DoNotOptimize(result);
+    }
+    state.SetItemsProcessed(state.iterations() *
+                            static_cast<std::int64_t>(obstacles.points_body.size()));
 }
 
 void bench_naive(benchmark::State& state, const PointCloud* sweep) {
@@ -147,6 +175,12 @@ int main(int argc, char** argv) {
     const scantling::PointCloud sweep = tank_sweep();  // outlives the benchmarks: run_all below
     check_agreement(sweep);
     benchmark::RegisterBenchmark("sweep_64x1024/ours/1thr", bench_ours, &sweep)
+        ->Unit(benchmark::kMicrosecond)
+        ->UseRealTime();
+    benchmark::RegisterBenchmark("sweep_64x1024/gather/1thr", bench_gather, &sweep)
+        ->Unit(benchmark::kMicrosecond)
+        ->UseRealTime();
+    benchmark::RegisterBenchmark("sweep_64x1024/gathered/1thr", bench_gathered, &sweep)
         ->Unit(benchmark::kMicrosecond)
         ->UseRealTime();
     benchmark::RegisterBenchmark("sweep_64x1024/naive_spec/1thr", bench_naive, &sweep)

@@ -14,6 +14,9 @@ configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/scantlingConfig.cmake.
   INSTALL_DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/scantling)
 write_basic_package_version_file(${PROJECT_BINARY_DIR}/scantlingConfigVersion.cmake
   COMPATIBILITY SameMinorVersion)
+# FindOpenCVImgproc.cmake goes beside the config: Debian's OpenCV has no config of its own,
+# and the exported scantling::perception links OpenCV::imgproc.
 install(FILES ${PROJECT_BINARY_DIR}/scantlingConfig.cmake
   ${PROJECT_BINARY_DIR}/scantlingConfigVersion.cmake
+  ${PROJECT_SOURCE_DIR}/cmake/FindOpenCVImgproc.cmake
   DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/scantling)

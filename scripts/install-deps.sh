@@ -11,6 +11,8 @@ packages=(
   libeigen3-dev libnanoflann-dev libtbb-dev libyaml-cpp-dev nlohmann-json3-dev
   libcli11-dev libspdlog-dev libfmt-dev libgtest-dev libgmock-dev libbenchmark-dev
   libassimp-dev libembree-dev libceres-dev liboctomap-dev zlib1g-dev libpng-dev
+  # Canny edges in the sonar image (perception; cmake/FindOpenCVImgproc.cmake)
+  libopencv-core-dev libopencv-imgproc-dev
   # make fuzz: clang with libFuzzer and the ASan/UBSan runtimes (libclang_rt.fuzzer-x86_64.a)
   clang-14 libclang-rt-14-dev
   # plots of the experiments (scripts/d52-experiments.sh; docs/results.md)

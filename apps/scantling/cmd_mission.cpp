@@ -58,8 +58,15 @@ std::string summary_text(const mission::MissionScenario& m, const mission::Missi
         "ranges {} (refused {}, re-acquired {} times)\n",
         r.increments_applied, r.increments_rejected, r.ranges_applied, r.ranges_rejected,
         r.uwb_applied, r.uwb_rejected, r.uwb_reacquisitions);
-    text += fmt::format("odometry: {} sweeps registered ({} degenerate), {} not registered\n",
-                        r.odometry_registered, r.odometry_degenerate, r.odometry_unregistered);
+    const double iterations_per_sweep = r.odometry_registered > 0
+                                            ? static_cast<double>(r.odometry_iterations) /
+                                                  static_cast<double>(r.odometry_registered)
+                                            : 0.0;
+    text += fmt::format(
+        "odometry: {} sweeps registered ({} degenerate, {:.1f} iterations each), {} not "
+        "registered\n",
+        r.odometry_registered, r.odometry_degenerate, iterations_per_sweep,
+        r.odometry_unregistered);
     if (r.inputs_rejected > 0) text += fmt::format("inputs_rejected: {}\n", r.inputs_rejected);
     text += fmt::format("wall_time: {:.1f} s\nreal_time_factor: {:.1f}x\n", r.wall_time_s,
                         r.real_time_factor);

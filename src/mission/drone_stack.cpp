@@ -140,13 +140,21 @@ void DroneStack::add_imu(const io::ImuRecord& sample) {
 }
 
 std::optional<Eigen::Isometry3d> DroneStack::odometry_prior(double t0_s, double t1_s) const {
-    // The EKF's motion of the LiDAR since the previous sweep (the filter is at t1 already).
+    // The global estimate's motion of the LiDAR since the previous sweep (the filters are at
+    // t1 already): the local EKF's motion carried by the global EKF's T_world_odom, whose
+    // drift velocity moves it between the sweeps. Not the local EKF's motion alone: along the hull
+    // LiODOM observes little, nothing aids the local filter's velocity there, and it wanders (7 m/s
+    // after 60 s on one seed), while the global EKF's drift velocity, held by UWB, cancels that.
+    // LiODOM keeps the prior along its degenerate directions, so with the local motion its map slid
+    // along the hull at the local filter's speed until no map cell was within reach
+    // (docs/results.md). Without absolute fixes the two motions are the same.
     if (!previous_sweep_stamp_s_ || std::abs(*previous_sweep_stamp_s_ - t0_s) > 1e-6 ||
         std::abs(local_.stamp_s() - t1_s) > 0.02) {
         return std::nullopt;
     }
     const Eigen::Isometry3d& T_bl = config_.T_body_lidar;
-    return (T_odom_body_previous_sweep_ * T_bl).inverse() * (local_.state().T_odom_body * T_bl);
+    const Eigen::Isometry3d T_world_body = global_.T_world_odom() * local_.state().T_odom_body;
+    return (T_world_body_previous_sweep_ * T_bl).inverse() * (T_world_body * T_bl);
 }
 
 std::optional<odometry::FrameReport> DroneStack::add_sweep(const PointCloud& sweep_lidar,
@@ -163,7 +171,9 @@ std::optional<odometry::FrameReport> DroneStack::add_sweep(const PointCloud& swe
     sweep.stamp_s = stamp_s;
     const odometry::FrameReport report = odometry_.process(sweep);
     fuse_increment(report, stamp_s);
-    latest_sweep_body_ = to_body(sweep_lidar, config_.T_body_lidar);
+    const PointCloud sweep_body = to_body(sweep_lidar, config_.T_body_lidar);
+    latest_obstacles_ = safety::gather_obstacle_points(sweep_body, config_.collision);
+    latest_clearance_ = safety::clearance_from_cloud(sweep_body, config_.height);
     latest_sweep_stamp_s_ = stamp_s;
     return report;
 }
@@ -190,7 +200,9 @@ void DroneStack::fuse_increment(const odometry::FrameReport& report, double stam
     const bool usable = registered(report.status) || report.status == odometry::FrameStatus::kFirst;
     T_lodom_lidar_previous_ = usable ? std::optional(report.T_odom_sensor) : std::nullopt;
     previous_sweep_stamp_s_ = stamp_s;
-    T_odom_body_previous_sweep_ = local_.state().T_odom_body;
+    // The local pose after this sweep's increment (the global EKF has not seen it yet: its
+    // state would count the correction again as motion before the next sweep).
+    T_world_body_previous_sweep_ = global_.T_world_odom() * local_.state().T_odom_body;
 }
 
 void DroneStack::add_range(const io::RangeRecord& range) {
@@ -314,14 +326,12 @@ Eigen::Vector3d DroneStack::apply_safety(const Eigen::Vector3d& v_world_mps, dou
     const Eigen::Matrix3d R_world_body = global_.state().T_odom_body.linear();
     Eigen::Vector3d v = v_world_mps;
     if (config_.collision_prevention) {
-        out.collision = safety::prevent_collision(R_world_body.transpose() * v, latest_sweep_body_,
+        out.collision = safety::prevent_collision(R_world_body.transpose() * v, latest_obstacles_,
                                                   config_.collision);
         v = R_world_body * out.collision->v_cmd_body_mps;
     }
     if (config_.height_keeping) {
-        const safety::VerticalClearance clearance =
-            safety::clearance_from_cloud(latest_sweep_body_, config_.height);
-        v.z() = safety::keep_height(v.z(), clearance, config_.height).v_z_cmd_mps;
+        v.z() = safety::keep_height(v.z(), latest_clearance_, config_.height).v_z_cmd_mps;
     }
     return v;
 }

@@ -51,6 +51,7 @@ void LoopMetrics::add_odometry(const std::optional<odometry::FrameReport>& repor
     if (report->status == odometry::FrameStatus::kOk || degenerate) {
         ++odometry_registered_;
         odometry_degenerate_ += degenerate ? 1 : 0;
+        odometry_iterations_ += static_cast<std::size_t>(std::max(report->iterations, 0));
     } else {
         ++odometry_unregistered_;
     }
@@ -112,6 +113,7 @@ MissionResult LoopMetrics::result(control::MissionState final_state) const {
     r.lidar_sweeps = sweeps_;
     r.odometry_registered = odometry_registered_;
     r.odometry_degenerate = odometry_degenerate_;
+    r.odometry_iterations = odometry_iterations_;
     r.odometry_unregistered = odometry_unregistered_;
     return r;
 }
@@ -146,6 +148,7 @@ std::string summary_json(const MissionScenario& scenario, const MissionResult& r
                              {"inputs_rejected", r.inputs_rejected},
                              {"odometry_registered", r.odometry_registered},
                              {"odometry_degenerate", r.odometry_degenerate},
+                             {"odometry_iterations", r.odometry_iterations},
                              {"odometry_unregistered", r.odometry_unregistered}};
     const LoopTiming& t = r.timing;
     if (r.coverage) {

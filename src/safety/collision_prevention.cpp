@@ -4,12 +4,15 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <span>
 #include <vector>
 
 #include <fmt/format.h>
 
 #include <scantling/core/config_checks.hpp>
 #include <scantling/core/error.hpp>
+
+#include "detail/prevent_collision_on.hpp"
 
 namespace scantling::safety {
 namespace {
@@ -43,7 +46,7 @@ void add_repulsion(const Eigen::Vector3d& p, double d2, const CollisionPreventio
 
 /// Squared distances throughout, so that only the few repelling points pay a sqrt.
 template <bool kHasFrustum>
-SweepScan scan_sweep(const std::vector<Eigen::Vector3d>& points, const Frustum& frustum,
+SweepScan scan_sweep(std::span<const Eigen::Vector3d> points, const Frustum& frustum,
                      const CollisionPreventionConfig& config) {
     SweepScan scan;
     const double d_min2 = config.d_min_m * config.d_min_m;
@@ -121,9 +124,12 @@ std::optional<Frustum> make_frustum(const Eigen::Vector3d& v_desired_body_mps,
     return frustum;
 }
 
-CollisionPreventionResult prevent_collision(const Eigen::Vector3d& v_desired_body_mps,
-                                            const PointCloud& cloud_body,
-                                            const CollisionPreventionConfig& config) {
+namespace detail {
+
+CollisionPreventionResult prevent_collision_on(const Eigen::Vector3d& v_desired_body_mps,
+                                               std::span<const Eigen::Vector3d> points_body,
+                                               const CollisionPreventionConfig& config,
+                                               std::optional<std::size_t> num_valid_points) {
     config.validate();
     if (!v_desired_body_mps.allFinite()) {
         throw InputError(
@@ -132,10 +138,10 @@ CollisionPreventionResult prevent_collision(const Eigen::Vector3d& v_desired_bod
                         v_desired_body_mps.x(), v_desired_body_mps.y(), v_desired_body_mps.z()));
     }
     const auto frustum = make_frustum(v_desired_body_mps, config);
-    const SweepScan scan = frustum ? scan_sweep<true>(cloud_body.points, *frustum, config)
-                                   : scan_sweep<false>(cloud_body.points, Frustum{}, config);
+    const SweepScan scan = frustum ? scan_sweep<true>(points_body, *frustum, config)
+                                   : scan_sweep<false>(points_body, Frustum{}, config);
     CollisionPreventionResult result;
-    result.num_valid_points = scan.valid;
+    result.num_valid_points = num_valid_points.value_or(scan.valid);
     result.num_frustum_points = scan.in_frustum;
     result.num_points_within_d_min = scan.repelling;
     if (scan.in_frustum > 0) result.d_o_m = std::sqrt(scan.d2_o_m2);
@@ -145,6 +151,15 @@ CollisionPreventionResult prevent_collision(const Eigen::Vector3d& v_desired_bod
     result.v_cmd_body_mps = result.v_att_body_mps + result.v_rep_body_mps;
     result.status = status_of(result);
     return result;
+}
+
+}  // namespace detail
+
+CollisionPreventionResult prevent_collision(const Eigen::Vector3d& v_desired_body_mps,
+                                            const PointCloud& cloud_body,
+                                            const CollisionPreventionConfig& config) {
+    return detail::prevent_collision_on(v_desired_body_mps, cloud_body.points, config,
+                                        std::nullopt);
 }
 
 std::string_view to_string(AttenuationStatus status) {

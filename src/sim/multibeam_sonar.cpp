@@ -150,6 +150,20 @@ SonarImage MultibeamSonar::scan(const SceneView& scene, const Eigen::Isometry3d&
     return image;
 }
 
+io::SonarPing to_sonar_ping(const SonarImage& image) {
+    io::SonarPing ping;
+    ping.stamp_s = image.stamp_s;
+    ping.num_beams = image.num_beams;
+    ping.num_bins = image.num_bins;
+    ping.intensity = image.intensity;
+    ping.bearings_rad = image.bearings_rad;
+    ping.ranges_m = image.ranges_m;
+    ping.min_range_m = image.min_range_m;
+    ping.max_range_m = image.max_range_m;
+    ping.horizontal_fov_rad = image.horizontal_fov_rad;
+    return ping;
+}
+
 float MultibeamSonar::amplitude(double signal_power, double speckle) const {
     return static_cast<float>(config_.gain *
                               std::sqrt((signal_power + config_.noise_floor) * speckle));

@@ -70,6 +70,12 @@ void PinholeCameraConfig::validate(std::string_view prefix) const {
     detail::require_angle(prefix, "max_defect_view_angle_rad", max_defect_view_angle_rad,
                           std::numbers::pi / 2.0 + 1e-12);
     validate_mount(T_body_sensor, prefix);
+    detail::require(lasers.size() <= kMaxLaserPointers, prefix, "lasers",
+                    static_cast<double>(lasers.size()),
+                    fmt::format("at most {} lasers", kMaxLaserPointers));
+    for (std::size_t i = 0; i < lasers.size(); ++i) {
+        lasers[i].validate(fmt::format("{}.lasers[{}]", prefix, i));
+    }
 }
 
 PinholeCameraConfig uav3d_camera() { return PinholeCameraConfig{}; }
@@ -113,6 +119,9 @@ RgbImage PinholeCamera::render(const SceneView& scene, const Eigen::Isometry3d& 
             if (hits[i].hit) image.pixels[i] = shade(hits[i], rays[i].direction, scene, config_);
         }
     });
+    if (!config_.lasers.empty()) {
+        draw_laser_spots(laser_spots(scene, T_world_body), config_.lasers, image);
+    }
     if (config_.pixel_noise_dn > 0.0) {
         for (Rgb8& pixel : image.pixels) {
             for (int c = 0; c < 3; ++c) {
@@ -121,6 +130,12 @@ RgbImage PinholeCamera::render(const SceneView& scene, const Eigen::Isometry3d& 
         }
     }
     return image;
+}
+
+std::vector<LaserSpot> PinholeCamera::laser_spots(const SceneView& scene,
+                                                  const Eigen::Isometry3d& T_world_body) const {
+    return cast_laser_spots(config_.lasers, config_.intrinsics, config_.max_range_m, scene,
+                            T_world_body * config_.T_body_sensor);
 }
 
 std::vector<int> PinholeCamera::visible_defects(const SceneView& scene,

@@ -71,7 +71,7 @@ const std::map<std::string, SensorKeys>& sensor_keys() {
          {{"type", "preset", "rate_hz", "width", "noise", "T_body_sensor"},
           {"l515", "azure_nfov", "azure_nfov_binned"}}},
         {"camera",
-         {{"type", "preset", "rate_hz", "width", "height", "noise", "T_body_sensor"},
+         {{"type", "preset", "rate_hz", "width", "height", "noise", "lasers", "T_body_sensor"},
           {"uav3d", "rov"}}},
         {"multibeam_sonar",
          {{"type", "rate_hz", "num_beams", "num_bins", "max_range_m", "noise", "T_body_sensor"},
@@ -141,6 +141,19 @@ ConfigSchema<UwbAnchor> anchor_schema() {
     return s;
 }
 
+ConfigSchema<LaserPointer> laser_schema() {
+    ConfigSchema<LaserPointer> s;
+    s.field("origin_camera", &LaserPointer::origin_camera, "beam origin, optical frame, m",
+            kCoordinate)
+        .field("direction_camera", &LaserPointer::direction_camera,
+               "beam direction, optical frame; non-zero, normalised", kCoordinate)
+        .field("spot_radius_m", &LaserPointer::spot_radius_m, "spot radius on the surface",
+               between(1e-6, 1.0))
+        .field("rgb", &LaserPointer::rgb, "spot colour, 8-bit channels",
+               Range{.min = 0.0, .max = 255.0});
+    return s;
+}
+
 ConfigSchema<ExportSpec> export_schema() {
     ConfigSchema<ExportSpec> s;
     s.field("world", &ExportSpec::world, "write DIR/world/")
@@ -190,6 +203,7 @@ const ConfigSchema<SensorSpec>& sensor_spec_schema() {
             .field("ambient_light", &S::ambient_light, "vio: lighting factor, 0 = dark",
                    Range{.min = 0.0, .max = 1.0})
             .list("anchors", &S::anchors, anchor_schema(), "uwb: anchors, world frame")
+            .list("lasers", &S::lasers, laser_schema(), "camera: laser pointers, optical frame")
             .section("T_body_sensor", &S::T_body_sensor, pose_spec_schema(), "mount");
         return s;
     }();

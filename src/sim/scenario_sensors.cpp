@@ -107,6 +107,7 @@ PinholeCameraConfig camera_config(const SensorSpec& spec, const std::string& pre
     if (!spec.noise) config.pixel_noise_dn = 0.0;
     if (spec.rate_hz > 0.0) config.rate_hz = spec.rate_hz;
     config.T_body_sensor = spec.T_body_sensor.to_isometry();
+    config.lasers = spec.lasers;
     config.validate(prefix);
     return config;
 }
@@ -224,7 +225,8 @@ class CameraSensor : public ScenarioSensor {
                             .T_world_sensor = T_world_body * camera_.config().T_body_sensor,
                             .intrinsics = camera_.config().intrinsics,
                             .T_body_sensor = camera_.config().T_body_sensor,
-                            .sightings = camera_.sight_defects(c.scene, T_world_body)};
+                            .sightings = camera_.sight_defects(c.scene, T_world_body),
+                            .laser_spots = camera_.laser_spots(c.scene, T_world_body)};
     }
 
   private:

@@ -109,6 +109,36 @@ TEST(Scenario, DuplicateSensorTypesAreRejected) {
     EXPECT_THROW(parse_scenario("sensors: [{type: imu}, {type: imu}]\n"), ConfigError);
 }
 
+TEST(Scenario, CameraLaserPointersAreReadAndCheckedNamingTheKey) {
+    const Scenario s = parse_scenario(
+        "sensors:\n  - type: camera\n    lasers:\n"
+        "      - {origin_camera: [0, -0.1, 0], spot_radius_m: 0.003}\n"
+        "      - {origin_camera: [0, 0.1, 0], direction_camera: [0, 0, 2], rgb: [0, 255, 0]}\n");
+    const std::vector<LaserPointer>& lasers = s.sensors.at(0).lasers;
+    ASSERT_EQ(lasers.size(), 2u);
+    EXPECT_EQ(lasers[0].origin_camera, Eigen::Vector3d(0.0, -0.1, 0.0));
+    EXPECT_EQ(lasers[0].direction_camera, Eigen::Vector3d::UnitZ());  // the default
+    EXPECT_DOUBLE_EQ(lasers[0].spot_radius_m, 0.003);
+    EXPECT_EQ(lasers[0].rgb, Eigen::Vector3d(255.0, 0.0, 0.0));  // red by default
+    EXPECT_EQ(lasers[1].direction_camera, Eigen::Vector3d(0.0, 0.0, 2.0));
+    EXPECT_EQ(lasers[1].rgb, Eigen::Vector3d(0.0, 255.0, 0.0));
+    EXPECT_TRUE(parse_scenario("sensors: [{type: camera}]\n").sensors.at(0).lasers.empty());
+    const std::string camera = "sensors:\n  - type: camera\n    lasers:\n";
+    expect_parse_error(camera + "      - {origin: [0, 0, 0]}\n", "sensors[0].lasers[0].origin", 4);
+    expect_parse_error(camera + "      - {rgb: [0, 300, 0]}\n", "sensors[0].lasers[0].rgb[1]", 4);
+    expect_parse_error(camera + "      - {spot_radius_m: 0}\n",
+                       "sensors[0].lasers[0].spot_radius_m", 4);
+    expect_parse_error("sensors:\n  - type: imu\n    lasers: []\n", "sensors[0].lasers", 3);
+    try {
+        parse_scenario(camera + "      - {direction_camera: [0, 0, 0]}\n");
+        ADD_FAILURE() << "a zero laser direction was accepted";
+    } catch (const ConfigError& e) {
+        EXPECT_NE(std::string(e.what()).find("sensors[0].lasers[0].direction_camera"),
+                  std::string::npos)
+            << e.what();
+    }
+}
+
 TEST(Scenario, EveryShippedScenarioParses) {
     const fs::path dir = fs::path(SCANTLING_SOURCE_DIR) / "scenarios";
     int count = 0;

@@ -89,6 +89,8 @@ struct MissionResult {
     /// degenerate, and not registered (no edges, too few correspondences: motion model).
     std::size_t odometry_registered = 0;
     std::size_t odometry_degenerate = 0;
+    /// Outer iterations (correspondence searches) over the registered sweeps: LiODOM's cost.
+    std::size_t odometry_iterations = 0;
     std::size_t odometry_unregistered = 0;
     LoopTiming timing;
     /// The camera coverage of the inspected rectangle, when the scenario asks (coverage_spec.hpp).

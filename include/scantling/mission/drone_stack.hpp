@@ -7,7 +7,7 @@
 ///
 /// Pipeline per measurement:
 ///   IMU        → local EKF prediction (local_ekf.hpp), then the global EKF's prediction;
-///   LiDAR      → LiODOM (odometry/liodom.hpp) predicted by the EKF's own motion between
+///   LiDAR      → LiODOM (odometry/liodom.hpp) predicted by the global estimate's motion between
 ///                sweeps (so a direction the hull leaves unobserved keeps the IMU's motion),
 ///                its pose increment fused into the local EKF with the registration's
 ///                information (JᵀWJ / odometry_sigma_m², taken to the body frame), and the
@@ -26,9 +26,10 @@
 ///                                   any other motion, as PX4 does without obstacle data.
 /// Per command tick: the global estimate → mission manager (control/mission_manager.hpp:
 /// VTP follower and position PIDs) → collision prevention and height keeping on the latest
-/// sweep (safety/, in the body frame of the estimate) → command. A command is never NaN: the
-/// manager replaces one with a hover, and so does this stack (with an event) after the safety
-/// layer.
+/// sweep (safety/, in the body frame of the estimate; the sweep's nearby points and vertical
+/// clearances are gathered once when it arrives, safety/obstacle_points.hpp) → command. A command
+/// is never NaN: the manager replaces one with a hover, and so does this stack (with an event)
+/// after the safety layer.
 ///
 /// Frames: world (the mission's), odom (the local EKF's: the levelled start pose), body.
 /// Thread-safety: not thread-safe; one stack per vehicle. Deterministic for a given input
@@ -49,6 +50,7 @@
 #include <scantling/planning/waypoints.hpp>
 #include <scantling/safety/collision_prevention.hpp>
 #include <scantling/safety/height_keeping.hpp>
+#include <scantling/safety/obstacle_points.hpp>
 #include <scantling/safety/stream_watchdog.hpp>
 
 namespace scantling::mission {
@@ -58,7 +60,14 @@ namespace scantling::mission {
 /// prior, so along such a direction (motion parallel to a prismatic hull: ratio ≈ 1e-3, where
 /// the preset's 1e-3 test misses it) the sweep keeps the IMU's motion and reports no
 /// information, instead of holding the estimate in place with centimetre confidence
-/// (docs/results.md, "Closed-loop hull-side sweep").
+/// (docs/results.md, "Closed-loop hull-side sweep"). The preset's tight convergence (0.1 mm,
+/// 0.01 mrad) and a refit of every line at every iteration are kept although they cost the
+/// loop its speed: along the hull the pose slides by less than a millimetre per iteration, and
+/// only fully converged registrations with fresh correspondences recover the weak information
+/// there. With 0.5 mm / 0.05 mrad and a 1 cm refit distance the loop runs 5.8× real time with
+/// the same error while UWB holds the estimate, but without UWB the estimate ran away by
+/// 350–980 m instead of 6–17 m (docs/benchmarks.md, "Closed loop"). Those overrides remain
+/// available (stack.odometry.registration) for a site with absolute positioning.
 odometry::LiodomConfig drone_odometry_defaults();
 
 struct DroneStackConfig {
@@ -160,11 +169,16 @@ class DroneStack {
     localization::GlobalEkf global_;
     odometry::LidarOdometry odometry_;
     control::MissionManager manager_;
-    /// LiODOM's pose at the previous registered sweep, and the EKF's body pose there.
+    /// LiODOM's pose at the previous registered sweep, and the global estimate of the body pose
+    /// there.
     std::optional<Eigen::Isometry3d> T_lodom_lidar_previous_;
     std::optional<double> previous_sweep_stamp_s_;
-    Eigen::Isometry3d T_odom_body_previous_sweep_ = Eigen::Isometry3d::Identity();
-    PointCloud latest_sweep_body_;
+    Eigen::Isometry3d T_world_body_previous_sweep_ = Eigen::Isometry3d::Identity();
+    /// The safety layer's view of the latest sweep, gathered once when it arrives (the
+    /// commands outpace the sweeps): the points that can attenuate or repel, and the
+    /// clearances above and below.
+    safety::ObstaclePoints latest_obstacles_;
+    safety::VerticalClearance latest_clearance_;
     std::optional<double> latest_sweep_stamp_s_;
     safety::StreamWatchdog imu_watchdog_;
     safety::StreamWatchdog lidar_watchdog_;

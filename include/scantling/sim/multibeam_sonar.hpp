@@ -37,6 +37,7 @@
 
 #include <scantling/core/parallel.hpp>
 #include <scantling/core/random.hpp>
+#include <scantling/io/sonar_ping.hpp>
 #include <scantling/sim/sensor_mount.hpp>
 
 namespace scantling::sim {
@@ -104,6 +105,10 @@ struct CartesianSonarImage {
 /// for a non-positive resolution, an image whose arrays disagree with its sizes, or a grid over
 /// 2²⁶ pixels. O(pixels).
 CartesianSonarImage to_cartesian(const SonarImage& image, double resolution_m);
+
+/// The image as the robot receives it (io::SonarPing, what perception reads): the same fields,
+/// copied. Does not validate; SonarPing::validate does. O(num_beams · num_bins).
+io::SonarPing to_sonar_ping(const SonarImage& image);
 
 class MultibeamSonar {
   public:

@@ -13,7 +13,9 @@
 /// world-fixed cubes of `texture_cell_m` whose brightness varies by ± texture_contrast.
 /// Surfaces are grey; corrosion is drawn rust-orange and cracks near-black-red (scaled by the
 /// same b / albedo shading); misses are `background`. Optional Gaussian pixel noise
-/// (`pixel_noise_dn`, drawn serially in pixel order, R then G then B).
+/// (`pixel_noise_dn`, drawn serially in pixel order, R then G then B), added after the spots of
+/// the optional laser pointers (laser_spots.hpp) are blended in; without lasers the image is the
+/// same as before they existed.
 /// Determinism: identical images for any thread count. Thread-safety: const.
 
 #include <Eigen/Geometry>
@@ -27,6 +29,7 @@
 #include <scantling/io/png.hpp>
 #include <scantling/io/recording.hpp>
 #include <scantling/sim/camera_model.hpp>
+#include <scantling/sim/laser_spots.hpp>
 #include <scantling/sim/sensor_mount.hpp>
 
 namespace scantling::sim {
@@ -48,6 +51,8 @@ struct PinholeCameraConfig {
     double max_defect_view_angle_rad = 80.0 * std::numbers::pi / 180.0;
     Rgb8 background = Rgb8(0, 0, 0);  ///< colour of pixels without a hit
     Eigen::Isometry3d T_body_sensor = Eigen::Isometry3d::Identity();  ///< body ← optical frame
+    /// Laser pointers beside the camera (SPEC §5), at most kMaxLaserPointers; none by default.
+    std::vector<LaserPointer> lasers;
 
     /// Throws ConfigError naming the field ("pinhole_camera.ambient = 2, expected in [0, 1]").
     void validate(std::string_view prefix = "pinhole_camera") const;
@@ -81,6 +86,11 @@ class PinholeCamera {
     /// stand-in for the tags of the sources (SPEC §7). `image` and `stamp_s` are left 0.
     std::vector<io::DefectSighting> sight_defects(const SceneView& scene,
                                                   const Eigen::Isometry3d& T_world_body) const;
+
+    /// The spots of the config's lasers seen from the vehicle pose, in laser order (ground
+    /// truth; laser_spots.hpp). Empty without lasers. O(lasers) ray casts.
+    std::vector<LaserSpot> laser_spots(const SceneView& scene,
+                                       const Eigen::Isometry3d& T_world_body) const;
 
     const PinholeCameraConfig& config() const { return config_; }
 

@@ -21,6 +21,7 @@
 #include <scantling/core/parallel.hpp>
 #include <scantling/sim/crawler_dynamics.hpp>
 #include <scantling/sim/helix_trajectory.hpp>
+#include <scantling/sim/laser_spots.hpp>
 #include <scantling/sim/lawnmower_trajectory.hpp>
 #include <scantling/sim/legged_base.hpp>
 #include <scantling/sim/mav_dynamics.hpp>
@@ -182,7 +183,8 @@ struct SensorSpec {
     double surface_z_m = 0.0;        ///< pressure: world z of the water surface
     /// vio: lighting factor in [0, 1] scaling the feature quality (vio_features.hpp); 0 = dark.
     double ambient_light = 1.0;
-    std::vector<UwbAnchor> anchors;  ///< uwb: at least one, world frame
+    std::vector<UwbAnchor> anchors;    ///< uwb: at least one, world frame
+    std::vector<LaserPointer> lasers;  ///< camera: laser pointers, optical frame; none by default
     /// Mount (body ← sensor). Cameras: optical frame. dvl and vio: unset (zero) keeps the
     /// model's default (dvl down-looking, vio camera looking along body x).
     PoseSpec T_body_sensor{};

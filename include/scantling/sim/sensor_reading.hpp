@@ -60,6 +60,9 @@ struct ImageReading {
     PinholeIntrinsics intrinsics;
     Eigen::Isometry3d T_body_sensor = Eigen::Isometry3d::Identity();
     std::vector<io::DefectSighting> sightings;
+    /// Ground truth of the camera's laser spots in this image (empty without lasers); not
+    /// written to recordings.
+    std::vector<LaserSpot> laser_spots;
 };
 
 struct SonarReading {

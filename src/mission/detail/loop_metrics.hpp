@@ -49,6 +49,7 @@ class LoopMetrics {
     std::size_t sweeps_ = 0;
     std::size_t odometry_registered_ = 0;
     std::size_t odometry_degenerate_ = 0;
+    std::size_t odometry_iterations_ = 0;
     std::size_t odometry_unregistered_ = 0;
     std::optional<double> started_s_;
     std::optional<double> completed_s_;

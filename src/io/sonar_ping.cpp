@@ -1,0 +1,64 @@
+#include <scantling/core/error.hpp>
+#include <scantling/io/sonar_ping.hpp>
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <string>
+
+namespace scantling::io {
+namespace {
+
+void require(bool ok, std::string_view prefix, std::string_view field, const std::string& what) {
+    if (!ok) throw InputError(fmt::format("{}.{}: {}", prefix, field, what));
+}
+
+// Strictly increasing finite samples: the beam and bin axes must be monotone for an edge
+// image in which neighbouring pixels are neighbouring bearings and ranges.
+void require_axis(const std::vector<double>& axis, std::string_view prefix,
+                  std::string_view field) {
+    for (std::size_t i = 0; i < axis.size(); ++i) {
+        require(std::isfinite(axis[i]), prefix, field,
+                fmt::format("[{}] = {}, expected finite", i, axis[i]));
+        require(i == 0 || axis[i] > axis[i - 1], prefix, field,
+                fmt::format("[{}] = {} after {}, expected strictly increasing", i, axis[i],
+                            axis[i - 1]));
+    }
+}
+
+void require_sizes(const SonarPing& ping, std::string_view prefix) {
+    require(ping.num_beams >= 1, prefix, "num_beams",
+            fmt::format("= {}, expected >= 1", ping.num_beams));
+    require(ping.num_bins >= 1, prefix, "num_bins",
+            fmt::format("= {}, expected >= 1", ping.num_bins));
+    const std::size_t cells = static_cast<std::size_t>(ping.num_beams) * ping.num_bins;
+    require(
+        ping.intensity.size() == cells, prefix, "intensity",
+        fmt::format("{} values, expected num_beams · num_bins = {}", ping.intensity.size(), cells));
+    require(ping.bearings_rad.size() == static_cast<std::size_t>(ping.num_beams), prefix,
+            "bearings_rad",
+            fmt::format("{} values, expected num_beams = {}", ping.bearings_rad.size(),
+                        ping.num_beams));
+    require(ping.ranges_m.size() == static_cast<std::size_t>(ping.num_bins), prefix, "ranges_m",
+            fmt::format("{} values, expected num_bins = {}", ping.ranges_m.size(), ping.num_bins));
+}
+
+}  // namespace
+
+void SonarPing::validate(std::string_view prefix) const {
+    require_sizes(*this, prefix);
+    require(std::isfinite(min_range_m) && min_range_m >= 0.0, prefix, "min_range_m",
+            fmt::format("= {}, expected finite >= 0", min_range_m));
+    require(std::isfinite(max_range_m) && max_range_m > min_range_m, prefix, "max_range_m",
+            fmt::format("= {}, expected finite > min_range_m = {}", max_range_m, min_range_m));
+    require(std::isfinite(horizontal_fov_rad) && horizontal_fov_rad > 0.0, prefix,
+            "horizontal_fov_rad", fmt::format("= {}, expected finite > 0", horizontal_fov_rad));
+    require_axis(bearings_rad, prefix, "bearings_rad");
+    require_axis(ranges_m, prefix, "ranges_m");
+    for (std::size_t i = 0; i < intensity.size(); ++i) {
+        require(!std::isnan(intensity[i]), prefix, "intensity",
+                fmt::format("[{}] (beam {}, bin {}) is NaN", i, i / num_bins, i % num_bins));
+    }
+}
+
+}  // namespace scantling::io
