@@ -189,7 +189,8 @@ ConfigSchema<ShipHullConfig> ship_hull_schema() {
         .field("frame_spacing_m", &C::frame_spacing_m, "", kSpacing)
         .field("longitudinal_spacing_m", &C::longitudinal_spacing_m, "", kSpacing)
         .section("surroundings", &C::surroundings, surroundings_schema())
-        .section("defects", &C::defects, defects_schema());
+        .section("defects", &C::defects, defects_schema())
+        .section("appendages", &C::appendages, hull_appendages_schema(), "default: none");
     return s;
 }
 

@@ -3,8 +3,10 @@
 #include <scantling/sim/world_hull.hpp>
 
 #include "detail/defect_placement.hpp"
+#include "detail/hull_appendages.hpp"
 #include "detail/hull_surroundings.hpp"
 #include "detail/mesh_builder.hpp"
+#include "detail/ship_hull_shape.hpp"
 
 #include <fmt/format.h>
 
@@ -17,6 +19,9 @@ namespace {
 
 using detail::Loop3;
 using detail::MeshBuilder;
+using detail::s_squared;
+using detail::side_y;
+using detail::steps;
 
 constexpr std::string_view kPrefix = "ship_hull";
 constexpr double kPi = std::numbers::pi;
@@ -34,15 +39,6 @@ struct ProfilePoint {
     Part part;
 };
 using Profile = std::vector<ProfilePoint>;
-
-int steps(double length_m, double max_step_m) {
-    return std::max(1, static_cast<int>(std::ceil(length_m / max_step_m - 1e-9)));
-}
-
-double s_squared(const ShipHullConfig& c, double x) {
-    const double s = 2.0 * x / c.length_m - 1.0;
-    return s * s;
-}
 
 // Appends the points from a to b (b excluded) in n steps.
 void add_segment(Profile& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b, int n, Part part) {
@@ -114,19 +110,6 @@ void add_end(MeshBuilder& builder, const ShipHullConfig& c, double x, double fac
     builder.add_polygon(loop, {}, facing * kX, tag);
 }
 
-// y of the +y side shell at (x, z): the swept side is planar between stations, so the
-// inward offset is interpolated linearly between them.
-double side_y(const ShipHullConfig& c, double x, double z) {
-    const int n = steps(c.length_m, c.station_spacing_m);
-    const double dx = c.length_m / n;
-    const int i = std::min(n - 1, static_cast<int>(std::floor(x / dx)));
-    const double x0 = i * dx, x1 = (i + 1) * dx, t = (x - x0) / dx;
-    const double inward =
-        c.side_curvature_m * ((1.0 - t) * s_squared(c, x0) + t * s_squared(c, x1));
-    const double side_z0 = c.keel_height_m + c.bilge_radius_m;
-    return c.half_breadth_m - inward + std::tan(c.flare_rad) * (z - side_z0);
-}
-
 WorldMetadata metadata_of(const ShipHullConfig& c) {
     WorldMetadata m;
     m.name = std::string(kPrefix);
@@ -172,6 +155,8 @@ World build_ship_hull(const ShipHullConfig& config) {
     add_end(builder, config, 0.0, -1.0, ends);
     add_end(builder, config, config.length_m, 1.0, ends);
     detail::add_surroundings(builder, extent_of(config), config.surroundings);
+    // After the surroundings, so their tags do not move when appendages are added.
+    detail::add_hull_appendages(builder, config);
     World world = builder.finish(metadata_of(config));
     Aabb site = compute_bounds(world.mesh);
     site.min.array() -= kSiteMargin_m;
@@ -210,6 +195,7 @@ void ShipHullConfig::validate(std::string_view prefix) const {
     require(surroundings.environment != HullEnvironment::kQuay || surroundings.draught_m < depth_m,
             prefix, "surroundings.draught_m", surroundings.draught_m, "< depth_m (afloat)");
     defects.validate(fmt::format("{}.defects", prefix));
+    detail::validate_hull_appendages(*this, fmt::format("{}.appendages", prefix));
 }
 
 }  // namespace scantling::sim

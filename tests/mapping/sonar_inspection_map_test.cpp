@@ -13,6 +13,7 @@
 
 #include <scantling/core/error.hpp>
 #include <scantling/core/random.hpp>
+#include <scantling/mapping/hull_coverage.hpp>
 #include <scantling/mapping/sonar_inspection_map.hpp>
 
 #include "../planning/expect_error.hpp"

@@ -58,6 +58,8 @@ inline constexpr io::Range kCoordinate =
     between(-limits::kMaxCoordinate_m, limits::kMaxCoordinate_m);
 
 const io::ConfigSchema<WorldSpec>& world_spec_schema();
+/// `world.ship_hull.appendages` (scenario_schema_appendages.cpp).
+io::ConfigSchema<HullAppendagesConfig> hull_appendages_schema();
 const io::ConfigSchema<VehicleSpec>& vehicle_spec_schema();
 const io::ConfigSchema<SensorSpec>& sensor_spec_schema();
 const io::ConfigSchema<PoseSpec>& pose_spec_schema();

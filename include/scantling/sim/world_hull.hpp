@@ -18,6 +18,7 @@
 
 #include <scantling/sim/world.hpp>
 #include <scantling/sim/world_builders.hpp>
+#include <scantling/sim/world_hull_appendages.hpp>
 
 namespace scantling::sim {
 
@@ -66,7 +67,9 @@ struct HullSurroundingsConfig {
 /// surroundings'. Metadata: frames every frame_spacing_m along x (plane x = const, numbered
 /// from 0 at x = 0), longitudinals (strake lines on the +y side shell at heights every
 /// longitudinal_spacing_m above the bilge, point and axis at midship), landmarks at their
-/// crossings (exactly on the shell), defects on side shell, bilge and bottom.
+/// crossings (exactly on the shell), defects on side shell, bilge and bottom (possibly under an
+/// appendage). Appendages (world_hull_appendages.hpp) add the surfaces "bilge_keel", "anode"
+/// and "sea_chest_grating" after the surroundings' (default: none).
 struct ShipHullConfig {
     double length_m = 30.0;
     double half_breadth_m = 8.0;  ///< centreline to the side shell at the bilge top
@@ -84,6 +87,7 @@ struct ShipHullConfig {
     double longitudinal_spacing_m = 0.7;
     HullSurroundingsConfig surroundings{};
     DefectPlacementConfig defects{.count = 8};
+    HullAppendagesConfig appendages{};
 
     void validate(std::string_view prefix = "ship_hull") const;
 };
