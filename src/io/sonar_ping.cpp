@@ -9,20 +9,29 @@
 namespace scantling::io {
 namespace {
 
+[[noreturn]] void fail(std::string_view prefix, std::string_view field, const std::string& what) {
+    throw InputError(fmt::format("{}.{}: {}", prefix, field, what));
+}
+
 void require(bool ok, std::string_view prefix, std::string_view field, const std::string& what) {
-    if (!ok) throw InputError(fmt::format("{}.{}: {}", prefix, field, what));
+    if (!ok) fail(prefix, field, what);
 }
 
 // Strictly increasing finite samples: the beam and bin axes must be monotone for an edge
 // image in which neighbouring pixels are neighbouring bearings and ranges.
 void require_axis(const std::vector<double>& axis, std::string_view prefix,
                   std::string_view field) {
+    // The messages are formatted only on failure: axis[i − 1] does not exist for i = 0, and a
+    // message per element would cost more than the check.
     for (std::size_t i = 0; i < axis.size(); ++i) {
-        require(std::isfinite(axis[i]), prefix, field,
-                fmt::format("[{}] = {}, expected finite", i, axis[i]));
-        require(i == 0 || axis[i] > axis[i - 1], prefix, field,
-                fmt::format("[{}] = {} after {}, expected strictly increasing", i, axis[i],
-                            axis[i - 1]));
+        if (!std::isfinite(axis[i])) {
+            fail(prefix, field, fmt::format("[{}] = {}, expected finite", i, axis[i]));
+        }
+        if (i > 0 && !(axis[i] > axis[i - 1])) {
+            fail(prefix, field,
+                 fmt::format("[{}] = {} after {}, expected strictly increasing", i, axis[i],
+                             axis[i - 1]));
+        }
     }
 }
 
@@ -56,8 +65,10 @@ void SonarPing::validate(std::string_view prefix) const {
     require_axis(bearings_rad, prefix, "bearings_rad");
     require_axis(ranges_m, prefix, "ranges_m");
     for (std::size_t i = 0; i < intensity.size(); ++i) {
-        require(!std::isnan(intensity[i]), prefix, "intensity",
-                fmt::format("[{}] (beam {}, bin {}) is NaN", i, i / num_bins, i % num_bins));
+        if (std::isnan(intensity[i])) {
+            fail(prefix, "intensity",
+                 fmt::format("[{}] (beam {}, bin {}) is NaN", i, i / num_bins, i % num_bins));
+        }
     }
 }
 
