@@ -25,12 +25,12 @@ void require_axis(const std::vector<double>& axis, std::string_view prefix,
     // message per element would cost more than the check.
     for (std::size_t i = 0; i < axis.size(); ++i) {
         if (!std::isfinite(axis[i])) {
-            fail(prefix, field, fmt::format("[{}] = {}, expected finite", i, axis[i]));
+            fail(prefix, fmt::format("{}[{}]", field, i),
+                 fmt::format("{}, expected finite", axis[i]));
         }
         if (i > 0 && !(axis[i] > axis[i - 1])) {
-            fail(prefix, field,
-                 fmt::format("[{}] = {} after {}, expected strictly increasing", i, axis[i],
-                             axis[i - 1]));
+            fail(prefix, fmt::format("{}[{}]", field, i),
+                 fmt::format("{} after {}, expected strictly increasing", axis[i], axis[i - 1]));
         }
     }
 }
@@ -66,8 +66,9 @@ void SonarPing::validate(std::string_view prefix) const {
     require_axis(ranges_m, prefix, "ranges_m");
     for (std::size_t i = 0; i < intensity.size(); ++i) {
         if (std::isnan(intensity[i])) {
-            fail(prefix, "intensity",
-                 fmt::format("[{}] (beam {}, bin {}) is NaN", i, i / num_bins, i % num_bins));
+            fail(prefix,
+                 fmt::format("intensity[{}] (beam {}, bin {})", i, i / num_bins, i % num_bins),
+                 "NaN, expected a number");
         }
     }
 }

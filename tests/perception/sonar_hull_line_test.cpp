@@ -290,29 +290,5 @@ TEST(SonarHullLine, BadConfigThrowsConfigErrorNamingTheField) {
     expect_bad([](auto& c) { c.min_inliers = 1; }, "min_inliers");
 }
 
-TEST(SonarPing, ValidPingPasses) { EXPECT_NO_THROW(render_wall(1.0, 0.0, 1).validate()); }
-
-TEST(SonarPing, ValidateNamesTheInconsistentField) {
-    const io::SonarPing good = render_wall(1.0, 0.0, 1);
-    const auto expect_bad = [&](auto edit, const std::string& field) {
-        io::SonarPing ping = good;
-        edit(ping);
-        expect_throw_naming<InputError>([&] { ping.validate("ping"); }, "ping." + field);
-    };
-    expect_bad([](auto& p) { p.num_beams = 0; }, "num_beams");
-    expect_bad([](auto& p) { p.num_bins = -1; }, "num_bins");
-    expect_bad([](auto& p) { p.intensity.push_back(0.0F); }, "intensity");
-    expect_bad([](auto& p) { p.bearings_rad.pop_back(); }, "bearings_rad");
-    expect_bad([](auto& p) { p.ranges_m.push_back(6.0); }, "ranges_m");
-    expect_bad([](auto& p) { std::swap(p.bearings_rad[0], p.bearings_rad[1]); }, "bearings_rad");
-    expect_bad([](auto& p) { p.ranges_m[5] = std::numeric_limits<double>::infinity(); },
-               "ranges_m");
-    expect_bad([](auto& p) { p.ranges_m[5] = p.ranges_m[4]; }, "ranges_m");
-    expect_bad([](auto& p) { p.intensity[17] = std::nanf(""); }, "intensity");
-    expect_bad([](auto& p) { p.max_range_m = p.min_range_m; }, "max_range_m");
-    expect_bad([](auto& p) { p.min_range_m = -1.0; }, "min_range_m");
-    expect_bad([](auto& p) { p.horizontal_fov_rad = 0.0; }, "horizontal_fov_rad");
-}
-
 }  // namespace
 }  // namespace scantling::perception
