@@ -206,5 +206,25 @@ TEST(MultibeamSonar, OneAndTwoThreadsGiveIdenticalImages) {
     EXPECT_NE(one.intensity, sonar.scan(scene.view(), Eigen::Isometry3d::Identity(), c).intensity);
 }
 
+// The ping as the robot receives it (io::SonarPing) carries the image's data unchanged and
+// passes the reader's own checks.
+TEST(MultibeamSonar, ToSonarPingCopiesEveryFieldAndValidates) {
+    const TestScene scene(wall_at(5.0));
+    const MultibeamSonar sonar(clean());
+    Rng rng(1);
+    const SonarImage image = sonar.scan(scene.view(), Eigen::Isometry3d::Identity(), rng, 2.5);
+    const io::SonarPing ping = to_sonar_ping(image);
+    EXPECT_EQ(ping.stamp_s, image.stamp_s);
+    EXPECT_EQ(ping.num_beams, image.num_beams);
+    EXPECT_EQ(ping.num_bins, image.num_bins);
+    EXPECT_EQ(ping.intensity, image.intensity);
+    EXPECT_EQ(ping.bearings_rad, image.bearings_rad);
+    EXPECT_EQ(ping.ranges_m, image.ranges_m);
+    EXPECT_EQ(ping.min_range_m, image.min_range_m);
+    EXPECT_EQ(ping.max_range_m, image.max_range_m);
+    EXPECT_EQ(ping.horizontal_fov_rad, image.horizontal_fov_rad);
+    EXPECT_NO_THROW(ping.validate());
+}
+
 }  // namespace
 }  // namespace scantling::sim
