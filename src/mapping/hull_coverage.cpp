@@ -84,13 +84,10 @@ SurfaceGrid make_grid(const InspectedSurface& surface, double cell_m,
             static_cast<std::size_t>(nv)};
 }
 
-std::size_t clamp_index(double coordinate_m, double cell_m, std::size_t n) {
-    return std::min(static_cast<std::size_t>(coordinate_m / cell_m), n - 1);
-}
-
-/// Marks the cells whose centres lie within half a face diagonal of (u, v): on a surface
-/// aligned with the voxels that is the one cell the mean falls in; on a tilted or offset one the
-/// means fall anywhere in their cells, and the disc closes the gaps one mean per cell would leave.
+/// Marks the cells whose centres lie within half a face diagonal of (u, v), which always
+/// includes the cell (u, v) falls in: on a surface aligned with the voxels that is the only one;
+/// on a tilted or offset one the means fall anywhere in their cells, and the disc closes the gaps
+/// one mean per cell would leave.
 void cover_disc(double u, double v, const SurfaceGrid& grid, std::vector<char>& covered) {
     const double s = grid.cell_m;
     const double r = s * std::numbers::sqrt2 / 2.0 * (1.0 + 1e-9);
@@ -120,9 +117,9 @@ std::vector<char> covered_mask(const SonarInspectionMap& map, const InspectedSur
             u > grid.extent_u_m || v > grid.extent_v_m) {
             continue;
         }
-        covered[grid.index(clamp_index(u, grid.cell_m, grid.nu),
-                           clamp_index(v, grid.cell_m, grid.nv))] = 1;
-        cover_disc(u, v, grid, covered);
+        // An extent a hair over the last cell's edge (kRelativeSlack) belongs to that cell.
+        const double n_u = static_cast<double>(grid.nu), n_v = static_cast<double>(grid.nv);
+        cover_disc(std::min(u, n_u * grid.cell_m), std::min(v, n_v * grid.cell_m), grid, covered);
     }
     return covered;
 }

@@ -139,6 +139,10 @@ void DroneStack::add_imu(const io::ImuRecord& sample) {
     imu_watchdog_.feed(sample.stamp_s);
 }
 
+Eigen::Isometry3d DroneStack::local_pose_in_world() const {
+    return global_.T_world_odom() * local_.state().T_odom_body;
+}
+
 std::optional<Eigen::Isometry3d> DroneStack::odometry_prior(double t0_s, double t1_s) const {
     // The global estimate's motion of the LiDAR since the previous sweep (the filters are at
     // t1 already): the local EKF's motion carried by the global EKF's T_world_odom, whose
@@ -153,8 +157,7 @@ std::optional<Eigen::Isometry3d> DroneStack::odometry_prior(double t0_s, double 
         return std::nullopt;
     }
     const Eigen::Isometry3d& T_bl = config_.T_body_lidar;
-    const Eigen::Isometry3d T_world_body = global_.T_world_odom() * local_.state().T_odom_body;
-    return (T_world_body_previous_sweep_ * T_bl).inverse() * (T_world_body * T_bl);
+    return (T_world_body_previous_sweep_ * T_bl).inverse() * (local_pose_in_world() * T_bl);
 }
 
 std::optional<odometry::FrameReport> DroneStack::add_sweep(const PointCloud& sweep_lidar,
@@ -202,7 +205,7 @@ void DroneStack::fuse_increment(const odometry::FrameReport& report, double stam
     previous_sweep_stamp_s_ = stamp_s;
     // The local pose after this sweep's increment (the global EKF has not seen it yet: its
     // state would count the correction again as motion before the next sweep).
-    T_world_body_previous_sweep_ = global_.T_world_odom() * local_.state().T_odom_body;
+    T_world_body_previous_sweep_ = local_pose_in_world();
 }
 
 void DroneStack::add_range(const io::RangeRecord& range) {

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numbers>
 #include <span>
 #include <vector>
 
@@ -19,8 +18,6 @@ namespace {
 
 // Below this |z × f| the velocity is vertical and "horizontal" needs another reference.
 constexpr double kVerticalTolerance = 1e-9;
-
-double tan_deg(double deg) { return std::tan(deg * std::numbers::pi / 180.0); }
 
 void require_half_angle(double deg, std::string_view prefix, std::string_view field) {
     config_checks::require(std::isfinite(deg) && deg > 0.0 && deg < 90.0, prefix, field, deg,
@@ -119,8 +116,8 @@ std::optional<Frustum> make_frustum(const Eigen::Vector3d& v_desired_body_mps,
     frustum.vertical_u = frustum.axis_f.cross(frustum.horizontal_h);
     frustum.near_m = config.robot_radius_m;
     frustum.far_m = config.d_att_m;
-    frustum.tan_half_h = tan_deg(config.half_fov_horizontal_deg);
-    frustum.tan_half_v = tan_deg(config.half_fov_vertical_deg);
+    frustum.tan_half_h = detail::tan_deg(config.half_fov_horizontal_deg);
+    frustum.tan_half_v = detail::tan_deg(config.half_fov_vertical_deg);
     return frustum;
 }
 

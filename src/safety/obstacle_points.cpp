@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 #include <fmt/format.h>
 
@@ -17,13 +16,11 @@ namespace {
 // hair wider (extra points outside the frustum and beyond d_min change nothing).
 constexpr double kReachMargin = 1.0 + 1e-9;
 
-double tan_deg(double deg) { return std::tan(deg * std::numbers::pi / 180.0); }
-
 }  // namespace
 
 double obstacle_reach_m(const CollisionPreventionConfig& config) {
-    const double th = tan_deg(config.half_fov_horizontal_deg);
-    const double tv = tan_deg(config.half_fov_vertical_deg);
+    const double th = detail::tan_deg(config.half_fov_horizontal_deg);
+    const double tv = detail::tan_deg(config.half_fov_vertical_deg);
     const double frustum_corner_m = config.d_att_m * std::sqrt(1.0 + th * th + tv * tv);
     return std::max(frustum_corner_m, config.d_min_m) * kReachMargin;
 }

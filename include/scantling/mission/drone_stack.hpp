@@ -159,6 +159,9 @@ class DroneStack {
     /// LiDAR's pause and resume).
     void watch_streams(double t_s, std::vector<control::OperatorCommand>& commands);
     std::optional<Eigen::Isometry3d> odometry_prior(double t0_s, double t1_s) const;
+    /// The local EKF's current pose carried into the world by the global EKF's T_world_odom
+    /// (the global state itself lags: it has not seen the local filter's latest update).
+    Eigen::Isometry3d local_pose_in_world() const;
     void fuse_increment(const odometry::FrameReport& report, double stamp_s);
     Eigen::Vector3d apply_safety(const Eigen::Vector3d& v_world_mps, double t_s,
                                  StackCommand& out) const;
