@@ -12,6 +12,7 @@
 #include <scantling/io/file_path.hpp>
 #include <scantling/mission/closed_loop.hpp>
 #include <scantling/mission/mission_scenario.hpp>
+#include <scantling/mission/rov_mission.hpp>
 #include <scantling/sim/scenario_runner.hpp>
 
 #include "scantling/commands.hpp"
@@ -83,28 +84,96 @@ std::string summary_text(const mission::MissionScenario& m, const mission::Missi
     return text;
 }
 
-}  // namespace
+std::string coverage_line(std::string_view what, const perception::CoverageResult& c) {
+    return fmt::format(
+        "{}: {:.1f} % ({:.2f} m2 seen), {} holes{}\n", what, 100.0 * c.covered_fraction,
+        c.covered_area_m2, c.holes.size(),
+        c.holes.empty() ? std::string() : fmt::format(", largest {:.3f} m2", c.holes[0].area_m2));
+}
 
-void run_mission(const MissionOptions& options, std::ostream& out) {
-    if (options.out.empty()) throw ConfigError("--out is required");
-    io::ensure_output_distinct(options.out, {options.scenario});
-    mission::MissionScenario scenario =
-        mission::load_mission_scenario(options.scenario, options.overrides);
-    if (options.seed) scenario.simulation.seed = *options.seed;
-    if (options.num_threads != 0) scenario.simulation.parallel.num_threads = options.num_threads;
+std::string rov_summary_text(const mission::RovMissionScenario& m,
+                             const mission::RovMissionResult& r) {
+    std::string text = fmt::format("recording: {}\n", r.directory);
+    text += fmt::format(
+        "scenario: {} (world {}, seed {}, rov hull survey, {} slices at {:.2f} m)\n", m.name,
+        sim::to_string(m.simulation.world.type), m.simulation.seed,
+        m.plan.orientation == planning::SliceOrientation::kHorizontal ? "horizontal" : "vertical",
+        m.plan.stand_off_m);
+    text += fmt::format("final_state: {}\nmission_time: {:.1f} s\n",
+                        control::to_string(r.final_state), r.mission_time_s);
+    text += fmt::format("stand_off_error: mean {:.3f} m, max {:.3f} m ({} samples)\n",
+                        r.stand_off_error_mean_m, r.stand_off_error_max_m, r.stand_off_samples);
+    text += fmt::format("heading_error: mean {:.2f} deg, max {:.2f} deg\n",
+                        r.heading_error_mean_rad * 180.0 / M_PI,
+                        r.heading_error_max_rad * 180.0 / M_PI);
+    if (r.coverage_survey)
+        text += coverage_line("camera_coverage_after_survey", *r.coverage_survey);
+    if (r.coverage) text += coverage_line("camera_coverage_final", *r.coverage);
+    text += fmt::format(
+        "believed_coverage: {:.1f} % after the survey, {:.1f} % at the end; {} holes re-inspected "
+        "in {} rounds\n",
+        100.0 * r.believed_coverage_survey, 100.0 * r.believed_coverage_final, r.holes_found,
+        r.reinspection_rounds);
+    text += fmt::format("estimate_error: rms {:.3f} m, max {:.3f} m, yaw rms {:.2f} deg\n",
+                        r.position_error_rms_m, r.position_error_max_m,
+                        r.yaw_error_rms_rad * 180.0 / M_PI);
+    text += fmt::format("sonar: {} pings, {} hull lines, {} voxels (uncertainty {:.3f} m)\n",
+                        r.pings, r.hull_lines, r.sonar_voxels, r.sonar_voxel_uncertainty_mean_m);
+    text += fmt::format("lasers: {} of {} images, distance error {:.3f} m\n", r.laser_measurements,
+                        r.images, r.laser_distance_error_mean_m);
+    text += fmt::format(
+        "guidance: paused {} ticks, backing off {} ticks, {} contacts; dvl without lock {}\n",
+        r.guidance_paused_ticks, r.backing_off_ticks, r.contacts, r.dvl_invalid);
+    if (r.inputs_rejected > 0) text += fmt::format("inputs_rejected: {}\n", r.inputs_rejected);
+    text += fmt::format("path_length: {:.1f} m\nevents: {}\n", r.path_length_m, r.events);
+    text += fmt::format("wall_time: {:.1f} s\nreal_time_factor: {:.1f}x\n", r.wall_time_s,
+                        r.real_time_factor);
+    return text;
+}
+
+template <class Run>
+auto run_interruptible(const MissionOptions& options, Run run) {
     const InterruptScope interrupt;
     mission::MissionRunOptions run_options;
     run_options.overwrite = options.force;
     run_options.stop_requested = [&interrupt] { return interrupt.requested(); };
     if (options.progress) run_options.progress = draw_progress;
-    mission::MissionResult result;
     try {
-        result = mission::run_mission(scenario, options.out, run_options);
+        auto result = run(run_options);
+        if (options.progress) std::fputs("\n", stderr);
+        return result;
     } catch (const sim::ScenarioInterrupted& e) {
         if (options.progress) std::fputs("\n", stderr);
         exit_interrupted(e.what(), interrupt.signal_number());
     }
-    if (options.progress) std::fputs("\n", stderr);
+}
+
+void run_rov_mission(const MissionOptions& options, std::ostream& out) {
+    mission::RovMissionScenario scenario =
+        mission::load_rov_mission_scenario(options.scenario, options.overrides);
+    if (options.seed) scenario.simulation.seed = *options.seed;
+    if (options.num_threads != 0) scenario.simulation.parallel.num_threads = options.num_threads;
+    const mission::RovMissionResult result =
+        run_interruptible(options, [&](const mission::MissionRunOptions& run_options) {
+            return mission::run_rov_mission(scenario, options.out, run_options);
+        });
+    out << rov_summary_text(scenario, result);
+}
+
+}  // namespace
+
+void run_mission(const MissionOptions& options, std::ostream& out) {
+    if (options.out.empty()) throw ConfigError("--out is required");
+    io::ensure_output_distinct(options.out, {options.scenario});
+    if (mission::is_rov_mission_file(options.scenario)) return run_rov_mission(options, out);
+    mission::MissionScenario scenario =
+        mission::load_mission_scenario(options.scenario, options.overrides);
+    if (options.seed) scenario.simulation.seed = *options.seed;
+    if (options.num_threads != 0) scenario.simulation.parallel.num_threads = options.num_threads;
+    const mission::MissionResult result =
+        run_interruptible(options, [&](const mission::MissionRunOptions& run_options) {
+            return mission::run_mission(scenario, options.out, run_options);
+        });
     out << summary_text(scenario, result);
 }
 

@@ -59,8 +59,8 @@ Eigen::Vector2d RovGuidance::horizontal(const Eigen::Vector3d& p_world_m,
 GuidanceCommand RovGuidance::update(const Eigen::Vector3d& p_world_m, double yaw_rad,
                                     const GuidanceTarget& target, double dt_s) {
     if (!p_world_m.allFinite() || !std::isfinite(yaw_rad) || !target.p_world_m.allFinite() ||
-        !target.v_horizontal_mps.allFinite() || !std::isfinite(target.yaw_rad) ||
-        !std::isfinite(dt_s) || dt_s <= 0.0) {
+        !target.v_horizontal_mps.allFinite() || !std::isfinite(target.v_vertical_mps) ||
+        !std::isfinite(target.yaw_rad) || !std::isfinite(dt_s) || dt_s <= 0.0) {
         throw InputError(fmt::format(
             "rov_guidance.update: position ({}, {}, {}), yaw {}, target ({}, {}, {}) yaw {}, dt "
             "{} s: expected finite values and dt > 0",
@@ -73,7 +73,9 @@ GuidanceCommand RovGuidance::update(const Eigen::Vector3d& p_world_m, double yaw
     update_pause(command.heading_error_rad, command.depth_error_m);
     command.paused = paused_;
     command.v_world_mps.head<2>() = horizontal(p_world_m, target);
-    command.v_world_mps.z() = depth_.update(target.p_world_m.z(), p_world_m.z(), dt_s);
+    command.v_world_mps.z() =
+        std::clamp(target.v_vertical_mps + depth_.update(target.p_world_m.z(), p_world_m.z(), dt_s),
+                   config_.depth.output_min, config_.depth.output_max);
     command.yaw_rate_radps = std::clamp(config_.yaw_gain_per_s * command.heading_error_rad,
                                         -config_.max_yaw_rate_radps, config_.max_yaw_rate_radps);
     return command;

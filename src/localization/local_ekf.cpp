@@ -65,6 +65,7 @@ void LocalEkf::initialize(double stamp_s, const Eigen::Isometry3d& T_odom_body,
     stamp_s_ = stamp_s;
     initialized_ = true;
     last_imu_.reset();
+    imu_interval_s_ = 0.0;
     clone_stamp_s_.reset();
     barometer_initialized_ = false;
     // Until a sample arrives, hold what a hovering IMU reads: gravity's reaction, no rotation.
@@ -99,6 +100,7 @@ ImuPredictionStatus LocalEkf::add_imu(const io::ImuRecord& sample) {
         if (gap) status = ImuPredictionStatus::kGap;
     }
     ++counters_.imu_samples;
+    if (last_imu_) imu_interval_s_ = sample.stamp_s - last_imu_->stamp_s;
     held_ = now;
     last_imu_ = sample;
     return status;

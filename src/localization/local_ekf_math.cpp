@@ -100,6 +100,12 @@ void validate_height(const LocalEkfConfig& c, std::string_view prefix) {
     detail::require_positive(c.barometer_gate_chi2, prefix, "barometer_gate_chi2");
 }
 
+void validate_underwater(const LocalEkfConfig& c, std::string_view prefix) {
+    detail::require_positive(c.velocity_gate_chi2, prefix, "velocity_gate_chi2");
+    detail::require_positive(c.depth_gate_chi2, prefix, "depth_gate_chi2");
+    detail::require_positive(c.yaw_gate_chi2, prefix, "yaw_gate_chi2");
+}
+
 void validate_mount(const Eigen::Isometry3d& T, std::string_view prefix, std::string_view field) {
     const bool finite = T.matrix().allFinite();
     const double orthogonality =
@@ -113,10 +119,12 @@ void validate_mount(const Eigen::Isometry3d& T, std::string_view prefix, std::st
 void LocalEkfConfig::validate(std::string_view prefix) const {
     validate_mount(T_body_imu, prefix, "T_body_imu");
     validate_mount(T_body_sensor, prefix, "T_body_sensor");
+    validate_mount(T_body_velocity_sensor, prefix, "T_body_velocity_sensor");
     validate_imu_noise(*this, prefix);
     validate_initial(*this, prefix);
     validate_timing(*this, prefix);
     validate_height(*this, prefix);
+    validate_underwater(*this, prefix);
 }
 
 Eigen::Matrix<double, 6, 12> increment_jacobian(const Eigen::Isometry3d& T_odom_body0,
@@ -149,6 +157,22 @@ RangePrediction predict_range(const Eigen::Isometry3d& T_odom_body,
     out.jacobian.leftCols<3>() = ez / out.cos_tilt;
     out.jacobian.rightCols<3>() =
         -ez * hat(lever) / out.cos_tilt - height_m * ez * hat(ray) / (out.cos_tilt * out.cos_tilt);
+    return out;
+}
+
+BodyVelocityPrediction predict_body_velocity(const Eigen::Matrix3d& R_odom_body,
+                                             const Eigen::Vector3d& v_odom_mps,
+                                             const Eigen::Vector3d& omega_body_radps,
+                                             const Eigen::Isometry3d& T_body_sensor) {
+    const Eigen::Matrix3d Rst = T_body_sensor.linear().transpose();
+    const Eigen::Vector3d lever = T_body_sensor.translation();
+    BodyVelocityPrediction out;
+    out.v_sensor_mps = Rst * (R_odom_body.transpose() * v_odom_mps + omega_body_radps.cross(lever));
+    // Left perturbation: R_trueᵀ v = Rᵀ exp(−δθ) v ≈ Rᵀ v + Rᵀ [v]× δθ.
+    out.d_theta = Rst * R_odom_body.transpose() * hat(v_odom_mps);
+    out.d_velocity = Rst * R_odom_body.transpose();
+    // ω_true = ω − δb_g, so ω_true × t = ω × t + [t]× δb_g.
+    out.d_gyro_bias = Rst * hat(lever);
     return out;
 }
 

@@ -1,8 +1,11 @@
-// The local EKF's measurements: LiDAR increments (stochastic cloning), range, barometer.
+// The local EKF's measurements: LiDAR increments (stochastic cloning), range, barometer,
+// and underwater a DVL's body velocity and a pressure depth.
+#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 #include <fmt/format.h>
 
@@ -19,6 +22,22 @@ namespace {
 
 void require_finite(bool ok, std::string_view what, double stamp_s) {
     if (!ok) throw InputError(fmt::format("local_ekf: {} at {} s is not finite", what, stamp_s));
+}
+
+/// Symmetric (to rounding) and positive definite: a Cholesky factorisation exists.
+bool symmetric_positive_definite(const Eigen::Matrix3d& M) {
+    if (!M.allFinite() || !M.isApprox(M.transpose(), 1e-9)) return false;
+    return Eigen::LLT<Eigen::Matrix3d>(M).info() == Eigen::Success;
+}
+
+void require_valid(const BodyVelocityMeasurement& m) {
+    require_finite(std::isfinite(m.stamp_s), "body velocity stamp_s", m.stamp_s);
+    require_finite(m.v_sensor_mps.allFinite(), "body velocity v_sensor_mps", m.stamp_s);
+    require_finite(m.covariance_mps2.allFinite(), "body velocity covariance_mps2", m.stamp_s);
+    if (!symmetric_positive_definite(m.covariance_mps2))
+        throw InputError(fmt::format(
+            "local_ekf: body velocity covariance_mps2 at {} s is not symmetric positive definite",
+            m.stamp_s));
 }
 
 /// The information's non-null eigen-space: directions (columns) and their eigenvalues.
@@ -161,6 +180,67 @@ UpdateResult LocalEkf::update_barometer(const BarometerMeasurement& altitude) {
     const UpdateResult result = correct(H, residual, noise, config_.barometer_gate_chi2);
     ++(result.status == UpdateStatus::kApplied ? counters_.barometer_applied
                                                : counters_.barometer_rejected);
+    return result;
+}
+
+UpdateResult LocalEkf::update_body_velocity(const BodyVelocityMeasurement& velocity) {
+    require_valid(velocity);
+    if (const auto refused = advance_to(velocity.stamp_s)) return UpdateResult{*refused, 0.0, 0};
+    // The lever arm turns with the held sample's rate, the same ω that state() reports.
+    const BodyVelocityPrediction predicted =
+        predict_body_velocity(x_.R_odom_body, x_.v_odom, held_.angular_rate_radps - x_.gyro_bias,
+                              config_.T_body_velocity_sensor);
+    Eigen::MatrixXd H = Eigen::MatrixXd::Zero(3, kStateDim);
+    H.middleCols<3>(kTheta) = predicted.d_theta;
+    H.middleCols<3>(kV) = predicted.d_velocity;
+    H.middleCols<3>(kBg) = predicted.d_gyro_bias;
+    const Eigen::VectorXd residual = velocity.v_sensor_mps - predicted.v_sensor_mps;
+    // ω is one raw gyro sample: its white noise reaches the lever arm's velocity ω × t.
+    const double gyro_var =
+        imu_interval_s_ > 0.0
+            ? std::pow(config_.gyro_noise_density_radps_per_sqrt_hz, 2) / imu_interval_s_
+            : 0.0;
+    const Eigen::MatrixXd noise = velocity.covariance_mps2 + gyro_var * predicted.d_gyro_bias *
+                                                                 predicted.d_gyro_bias.transpose();
+    const UpdateResult result = correct(H, residual, noise, config_.velocity_gate_chi2);
+    ++(result.status == UpdateStatus::kApplied ? counters_.velocity_applied
+                                               : counters_.velocity_rejected);
+    return result;
+}
+
+UpdateResult LocalEkf::update_depth(const DepthMeasurement& depth) {
+    require_finite(std::isfinite(depth.stamp_s) && std::isfinite(depth.z_odom_m) &&
+                       std::isfinite(depth.sigma_m) && depth.sigma_m > 0.0,
+                   "depth z_odom_m (or sigma_m <= 0)", depth.stamp_s);
+    if (const auto refused = advance_to(depth.stamp_s)) return UpdateResult{*refused, 0.0, 0};
+    // Water pressure is an absolute depth: p_z alone, no bias state as the barometer has.
+    Eigen::MatrixXd H = Eigen::MatrixXd::Zero(1, kStateDim);
+    H(0, kP + 2) = 1.0;
+    const Eigen::VectorXd residual = Eigen::VectorXd::Constant(1, depth.z_odom_m - x_.p_odom.z());
+    const Eigen::MatrixXd noise = Eigen::MatrixXd::Constant(1, 1, depth.sigma_m * depth.sigma_m);
+    const UpdateResult result = correct(H, residual, noise, config_.depth_gate_chi2);
+    ++(result.status == UpdateStatus::kApplied ? counters_.depth_applied
+                                               : counters_.depth_rejected);
+    return result;
+}
+
+UpdateResult LocalEkf::update_yaw(const YawMeasurement& yaw) {
+    require_finite(std::isfinite(yaw.stamp_s) && std::isfinite(yaw.yaw_odom_rad) &&
+                       std::isfinite(yaw.sigma_rad) && yaw.sigma_rad > 0.0,
+                   "yaw yaw_odom_rad (or sigma_rad <= 0)", yaw.stamp_s);
+    if (const auto refused = advance_to(yaw.stamp_s)) return UpdateResult{*refused, 0.0, 0};
+    const Eigen::Vector3d euler = euler_zyx_from_rotation(x_.R_odom_body);  // roll, pitch, yaw
+    // Left perturbation R_true = exp(δθ) R: ψ changes by δθ_z + tan θ (cos ψ δθ_x + sin ψ δθ_y).
+    const double tan_pitch = std::tan(euler.y());
+    Eigen::MatrixXd H = Eigen::MatrixXd::Zero(1, kStateDim);
+    H(0, kTheta) = tan_pitch * std::cos(euler.z());
+    H(0, kTheta + 1) = tan_pitch * std::sin(euler.z());
+    H(0, kTheta + 2) = 1.0;
+    const double wrapped = std::remainder(yaw.yaw_odom_rad - euler.z(), 2.0 * std::numbers::pi);
+    const Eigen::VectorXd residual = Eigen::VectorXd::Constant(1, wrapped);
+    const Eigen::MatrixXd noise = Eigen::MatrixXd::Constant(1, 1, yaw.sigma_rad * yaw.sigma_rad);
+    const UpdateResult result = correct(H, residual, noise, config_.yaw_gate_chi2);
+    ++(result.status == UpdateStatus::kApplied ? counters_.yaw_applied : counters_.yaw_rejected);
     return result;
 }
 

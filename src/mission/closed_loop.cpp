@@ -21,35 +21,22 @@
 
 #include "detail/coverage_monitor.hpp"
 #include "detail/loop_metrics.hpp"
+#include "detail/loop_support.hpp"
 
 namespace scantling::mission {
 namespace {
 
-namespace layout = io::recording_layout;
-
-void write_text(const std::string& path, const std::string& text) {
-    io::write_file_atomically(path, [&](std::ostream& out) { out << text; });
-}
+using detail::log_faults;
+using detail::log_operator;
+using detail::MissionFiles;
+using detail::recording_summary;
+using detail::sensor_types;
+using detail::StageClock;
+using detail::write_mission_files;
 
 bool is_frame(const sim::SensorReading& r) {
     return std::holds_alternative<sim::LidarReading>(r.data);
 }
-
-/// Accumulates the wall time of the scope into `total_s`.
-class StageClock {
-  public:
-    explicit StageClock(double& total_s) : total_s_(total_s) {}
-    ~StageClock() {
-        total_s_ +=
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-    }
-    StageClock(const StageClock&) = delete;
-    StageClock& operator=(const StageClock&) = delete;
-
-  private:
-    double& total_s_;
-    std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
-};
 
 /// One reading to the stack, as the io type a recording gives.
 void feed(DroneStack& stack, const sim::SensorReading& reading, detail::LoopMetrics& metrics,
@@ -84,20 +71,6 @@ std::string event_json(const control::MissionEvent& e) {
     return j.empty() ? "{}" : j.dump();
 }
 
-/// Everything the loop writes besides the simulator's streams.
-struct MissionFiles {
-    std::vector<io::EstimateRecord> estimates;
-    std::vector<io::CommandRecord> commands;
-    std::string events;
-    std::size_t num_events = 0;
-    bool limited = false;  ///< the safety layer's state at the previous tick
-
-    void add_event(double t_s, const std::string& type, const std::string& json) {
-        events += io::event_line(t_s, type, json);
-        ++num_events;
-    }
-};
-
 io::EstimateRecord estimate_record(const DroneStack& stack, double t_s) {
     const localization::DroneState s = stack.estimate();
     const auto& P = s.covariance;
@@ -131,29 +104,6 @@ void log_command(MissionFiles& files, const StackCommand& c, double t_s) {
     }
 }
 
-void log_operator(MissionFiles& files, std::span<const control::OperatorCommand> commands,
-                  double t_s) {
-    for (const control::OperatorCommand& c : commands) {
-        nlohmann::ordered_json j{{"command", std::string(control::to_string(c.type))}};
-        if (c.type == control::OperatorCommandType::kTakeOver) {
-            j["v_world_mps"] = {c.v_world_mps.x(), c.v_world_mps.y(), c.v_world_mps.z()};
-            j["yaw_rate_radps"] = c.yaw_rate_radps;
-        }
-        files.add_event(t_s, "operator", j.dump());
-    }
-}
-
-void log_faults(MissionFiles& files, FaultInjector& faults, double t_s) {
-    for (const FaultChange& change : faults.changes(t_s)) {
-        const SensorFault& f = faults.faults()[change.fault];
-        nlohmann::ordered_json j{{"fault", change.fault},
-                                 {"sensor", std::string(sim::to_string(f.sensor))},
-                                 {"kind", std::string(to_string(f.kind))}};
-        if (change.started) j["duration_s"] = f.duration_s;
-        files.add_event(t_s, change.started ? "fault_started" : "fault_ended", j.dump());
-    }
-}
-
 /// To the recording and the stack, or, inside a fault window, to the stack as NaNs or not at
 /// all (fault_injection.hpp).
 void deliver(const sim::SensorReading& reading, const FaultInjector& faults,
@@ -173,54 +123,8 @@ void deliver(const sim::SensorReading& reading, const FaultInjector& faults,
     }
 }
 
-std::vector<sim::SensorType> sensor_types(const sim::Scenario& simulation) {
-    std::vector<sim::SensorType> types;
-    for (const sim::SensorSpec& sensor : simulation.sensors) types.push_back(sensor.type);
-    return types;
-}
-
-std::vector<io::PathPointRecord> path_records(const planning::WaypointPath& path) {
-    std::vector<io::PathPointRecord> records;
-    for (const planning::Waypoint& wp : path.waypoints) {
-        records.push_back({wp.p_world_m, wp.tolerance_m});
-    }
-    return records;
-}
-
-void write_mission_files(const sim::RecordingWriter& writer, const MissionScenario& scenario,
-                         const MissionFiles& files, const MissionResult& result) {
-    const std::filesystem::path dir =
-        std::filesystem::path(writer.staging_directory()) / layout::kMissionDir;
-    std::filesystem::create_directories(dir);
-    const auto path = [&dir](const char* name) { return (dir / name).string(); };
-    write_text(path(layout::kMissionEstimates), io::estimates_csv(files.estimates));
-    std::vector<io::StampedPose> poses;
-    for (const io::EstimateRecord& e : files.estimates)
-        poses.push_back({e.stamp_s, e.T_world_body});
-    io::write_tum(path(layout::kMissionEstimatesTum), poses);
-    write_text(path(layout::kMissionCommands), io::commands_csv(files.commands));
-    write_text(path(layout::kMissionEvents), files.events);
-    write_text(path(layout::kMissionPath), io::intended_path_csv(path_records(scenario.path)));
-    write_text(path(layout::kMissionSummary), detail::summary_json(scenario, result));
-}
-
 bool ended(control::MissionState state) {
     return state == control::MissionState::kCompleted || state == control::MissionState::kAborted;
-}
-
-sim::RecordingSummary recording_summary(const MissionScenario& m, const sim::Simulator& sim) {
-    sim::RecordingSummary summary{.scenario = m.name,
-                                  .description = m.description,
-                                  .world = std::string(sim::to_string(m.simulation.world.type)),
-                                  .duration_s = sim.now_s(),
-                                  .dt_s = m.simulation.dt_s,
-                                  .seed = m.simulation.seed,
-                                  .sensors = {}};
-    for (std::size_t i = 0; i < m.simulation.sensors.size(); ++i) {
-        summary.sensors.emplace_back(std::string(sim::to_string(m.simulation.sensors[i].type)),
-                                     sim.sensor_rate_hz(i));
-    }
-    return summary;
 }
 
 }  // namespace
@@ -315,11 +219,11 @@ MissionResult run_mission(const MissionScenario& scenario, const std::string& di
     result.directory = directory;
     result.sim_time_s = sim.now_s();
     result.events = files.num_events;
-    writer.finish(recording_summary(scenario, sim));
+    writer.finish(recording_summary(scenario.name, scenario.description, scenario.simulation, sim));
     result.wall_time_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
     result.real_time_factor = result.sim_time_s / std::max(result.wall_time_s, 1e-9);
-    write_mission_files(writer, scenario, files, result);
+    write_mission_files(writer, files, scenario.path, detail::summary_json(scenario, result));
     writer.write_timing(result.wall_time_s, result.real_time_factor);
     writer.commit();
     return result;

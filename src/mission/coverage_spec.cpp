@@ -4,10 +4,100 @@
 #include <cmath>
 #include <string>
 
+#include <fmt/format.h>
+
 #include <scantling/core/config_checks.hpp>
 #include <scantling/core/error.hpp>
+#include <scantling/io/config_schema.hpp>
+#include <scantling/planning/config_yaml.hpp>
+#include <scantling/sim/scenario_schema.hpp>
+
+#include "detail/config_nodes.hpp"
 
 namespace scantling::mission {
+namespace {
+
+using detail::without;
+
+/// `coverage:` without its rectangle and grid (read separately).
+const io::ConfigSchema<CoverageSpec>& coverage_schema() {
+    using S = CoverageSpec;
+    static const io::ConfigSchema<S> schema = [] {
+        io::ConfigSchema<S> s;
+        s.field("rate_hz", &S::rate_hz, "views per second", io::kPositive)
+            .section("mount", &S::mount, sim::detail::pose_spec_schema(),
+                     "body frame; the camera looks along its +x")
+            .field("occlusion_margin_m", &S::occlusion_margin_m,
+                   "surfaces nearer than this to a cell do not hide it, m", io::kNonNegative);
+        return s;
+    }();
+    return schema;
+}
+
+struct CameraSpec {
+    int width_px = 1280;
+    int height_px = 960;
+    double hfov_deg = 66.0;
+    double vfov_deg = 49.5;
+};
+
+const io::ConfigSchema<CameraSpec>& camera_schema() {
+    using S = CameraSpec;
+    static const io::ConfigSchema<S> schema = [] {
+        io::ConfigSchema<S> s;
+        s.field("width_px", &S::width_px, "pixels")
+            .field("height_px", &S::height_px, "pixels")
+            .field("hfov_deg", &S::hfov_deg, "full horizontal field of view, degrees")
+            .field("vfov_deg", &S::vfov_deg, "full vertical field of view, degrees");
+        return s;
+    }();
+    return schema;
+}
+
+const io::ConfigSchema<perception::CameraCoverageConfig>& coverage_config_schema() {
+    using S = perception::CameraCoverageConfig;
+    static const io::ConfigSchema<S> schema = [] {
+        io::ConfigSchema<S> s;
+        s.field("cell_size_m", &S::cell_size_m, "grid cell, m", io::kPositive)
+            .field("max_range_m", &S::max_range_m, "farther cells are not seen, m", io::kPositive)
+            .field("max_incidence_deg", &S::max_incidence_deg, "steeper views do not count, deg")
+            .field("max_mm_per_px", &S::max_mm_per_px, "coarser views do not count (0: any)",
+                   io::kNonNegative)
+            .field("min_views", &S::min_views, "views a cell needs");
+        return s;
+    }();
+    return schema;
+}
+
+}  // namespace
+
+CoverageSpec coverage_from_yaml(const io::ConfigNode& node,
+                                const std::optional<planning::WallRectangle>& default_rectangle,
+                                std::string_view missing_why) {
+    if (!node.is_map()) io::detail::fail(node, "coverage", "expected a map");
+    CoverageSpec spec;
+    if (const io::ConfigNode* rectangle = node.find("rectangle")) {
+        planning::wall_rectangle_schema().apply(*rectangle, spec.rectangle);
+    } else if (default_rectangle) {
+        spec.rectangle = *default_rectangle;
+    } else {
+        io::detail::fail(node, "coverage",
+                         fmt::format("missing key 'rectangle' ({})", missing_why));
+    }
+    CameraSpec camera;
+    if (const io::ConfigNode* c = node.find("camera")) camera_schema().apply(*c, camera);
+    spec.width_px = camera.width_px;
+    spec.height_px = camera.height_px;
+    spec.hfov_deg = camera.hfov_deg;
+    spec.vfov_deg = camera.vfov_deg;
+    const io::ConfigNode rest = without(node, {"rectangle", "camera", "cell_size_m", "max_range_m",
+                                               "max_incidence_deg", "max_mm_per_px", "min_views"});
+    coverage_schema().apply(rest, spec);
+    io::ConfigNode grid =
+        without(node, {"rectangle", "camera", "mount", "rate_hz", "occlusion_margin_m"});
+    coverage_config_schema().apply(grid, spec.config);
+    return spec;
+}
 
 PinholeIntrinsics CoverageSpec::intrinsics() const {
     return PinholeIntrinsics::from_fov(width_px, height_px, hfov_deg * M_PI / 180.0,

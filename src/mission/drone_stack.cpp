@@ -12,23 +12,17 @@
 #include <scantling/core/error.hpp>
 #include <scantling/core/se3.hpp>
 
+#include "detail/frames.hpp"
+
 namespace scantling::mission {
 namespace {
 
 using namespace scantling::config_checks;
 
-double yaw_of(const Eigen::Matrix3d& R) { return euler_zyx_from_rotation(R).z(); }
+using detail::yaw_of;
 
-/// The start pose without its roll and pitch: the odom frame of the local EKF.
 Eigen::Isometry3d levelled(const Eigen::Isometry3d& T_world_body) {
-    if (!T_world_body.matrix().allFinite()) {
-        throw InputError("drone stack: the start pose is not finite");
-    }
-    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-    T.linear() = Eigen::AngleAxisd(yaw_of(T_world_body.linear()), Eigen::Vector3d::UnitZ())
-                     .toRotationMatrix();
-    T.translation() = T_world_body.translation();
-    return T;
+    return detail::levelled(T_world_body, "drone stack");
 }
 
 PointCloud to_body(const PointCloud& sweep_lidar, const Eigen::Isometry3d& T_body_lidar) {

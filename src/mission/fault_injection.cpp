@@ -15,11 +15,13 @@ namespace {
 
 constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
 
-/// The sensors whose readings the drone stack consumes, hence the ones a NaN fault can poison.
+/// The sensors whose readings the stacks consume as measurements (the drone's and the ROV's),
+/// hence the ones a NaN fault can poison (poisoned() below).
 bool poisonable(sim::SensorType type) {
     using T = sim::SensorType;
     return type == T::kSpinningLidar || type == T::kImu || type == T::kRangeFinder ||
-           type == T::kBarometer || type == T::kUwb;
+           type == T::kBarometer || type == T::kUwb || type == T::kDvl || type == T::kPressure ||
+           type == T::kMultibeamSonar;
 }
 
 bool inside(const SensorFault& f, double t_s) {
@@ -37,8 +39,9 @@ void SensorFault::validate(std::string_view prefix) const {
                            duration_s, "finite > 0 (seconds)");
     if (kind == FaultKind::kNan && !poisonable(sensor)) {
         throw ConfigError(fmt::format(
-            "{}.kind = nan for a {} sensor: NaN faults apply to the drone stack's inputs "
-            "(spinning_lidar, imu, range_finder, barometer, uwb); use dropout",
+            "{}.kind = nan for a {} sensor: NaN faults apply to the stacks' measurements "
+            "(spinning_lidar, imu, range_finder, barometer, uwb, dvl, pressure, "
+            "multibeam_sonar); use dropout",
             prefix, sim::to_string(sensor)));
     }
 }
@@ -87,6 +90,14 @@ sim::SensorReading poisoned(sim::SensorReading reading) {
         for (sim::UwbRange& r : uwb->ranges) r.range_m = kNan;
     } else if (auto* lidar = std::get_if<sim::LidarReading>(&reading.data)) {
         for (Eigen::Vector3d& p : lidar->sweep.points) p.setConstant(kNan);
+    } else if (auto* dvl = std::get_if<sim::DvlSample>(&reading.data)) {
+        dvl->v_body_mps.setConstant(kNan);
+    } else if (auto* pressure = std::get_if<sim::PressureSample>(&reading.data)) {
+        pressure->depth_m = kNan;
+        pressure->pressure_pa = kNan;
+    } else if (auto* sonar = std::get_if<sim::SonarReading>(&reading.data)) {
+        std::fill(sonar->image.intensity.begin(), sonar->image.intensity.end(),
+                  std::numeric_limits<float>::quiet_NaN());
     }
     return reading;
 }

@@ -17,8 +17,14 @@
 #include <scantling/safety/config_yaml.hpp>
 #include <scantling/sim/scenario_schema.hpp>
 
+#include "detail/config_nodes.hpp"
+
 namespace scantling::mission {
 namespace {
+
+using detail::apply_override;
+using detail::required;
+using detail::without;
 
 /// A recorded point of the scenario (`recorded_points:`), for `mission: {type: goto}`.
 struct RecordedPointSpec {
@@ -132,98 +138,6 @@ const io::ConfigSchema<MissionDocument>& document_schema() {
     return schema;
 }
 
-/// The root map without the keys read by their own readers.
-io::ConfigNode without(const io::ConfigNode& root, std::initializer_list<std::string_view> keys) {
-    io::ConfigNode rest = root;
-    std::erase_if(rest.map, [&keys](const auto& entry) {
-        return std::find(keys.begin(), keys.end(), entry.first) != keys.end();
-    });
-    return rest;
-}
-
-const io::ConfigNode& required(const io::ConfigNode& root, std::string_view key) {
-    const io::ConfigNode* node = root.find(key);
-    if (node == nullptr) {
-        io::detail::fail(root, "", "missing key '" + std::string(key) + "'");
-    }
-    return *node;
-}
-
-/// `coverage:` (coverage_spec.hpp); its rectangle is read separately (default: the mission's).
-const io::ConfigSchema<CoverageSpec>& coverage_schema() {
-    using S = CoverageSpec;
-    static const io::ConfigSchema<S> schema = [] {
-        io::ConfigSchema<S> s;
-        s.field("rate_hz", &S::rate_hz, "views per second", io::kPositive)
-            .section("mount", &S::mount, sim::detail::pose_spec_schema(),
-                     "body frame; the camera looks along its +x")
-            .field("occlusion_margin_m", &S::occlusion_margin_m,
-                   "surfaces nearer than this to a cell do not hide it, m", io::kNonNegative);
-        return s;
-    }();
-    return schema;
-}
-
-struct CameraSpec {
-    int width_px = 1280;
-    int height_px = 960;
-    double hfov_deg = 66.0;
-    double vfov_deg = 49.5;
-};
-
-const io::ConfigSchema<CameraSpec>& camera_schema() {
-    using S = CameraSpec;
-    static const io::ConfigSchema<S> schema = [] {
-        io::ConfigSchema<S> s;
-        s.field("width_px", &S::width_px, "pixels")
-            .field("height_px", &S::height_px, "pixels")
-            .field("hfov_deg", &S::hfov_deg, "full horizontal field of view, degrees")
-            .field("vfov_deg", &S::vfov_deg, "full vertical field of view, degrees");
-        return s;
-    }();
-    return schema;
-}
-
-const io::ConfigSchema<perception::CameraCoverageConfig>& coverage_config_schema() {
-    using S = perception::CameraCoverageConfig;
-    static const io::ConfigSchema<S> schema = [] {
-        io::ConfigSchema<S> s;
-        s.field("cell_size_m", &S::cell_size_m, "grid cell, m", io::kPositive)
-            .field("max_range_m", &S::max_range_m, "farther cells are not seen, m", io::kPositive)
-            .field("max_incidence_deg", &S::max_incidence_deg, "steeper views do not count, deg")
-            .field("max_mm_per_px", &S::max_mm_per_px, "coarser views do not count (0: any)",
-                   io::kNonNegative)
-            .field("min_views", &S::min_views, "views a cell needs");
-        return s;
-    }();
-    return schema;
-}
-
-/// `coverage:` of the document; `mission` gives the default rectangle (sweep, vertical).
-CoverageSpec coverage_from_yaml(const io::ConfigNode& node, const io::ConfigNode& mission) {
-    if (!node.is_map()) io::detail::fail(node, "coverage", "expected a map");
-    CoverageSpec spec;
-    const io::ConfigNode* rectangle = node.find("rectangle");
-    if (rectangle == nullptr) rectangle = mission.find("rectangle");
-    if (rectangle == nullptr) {
-        io::detail::fail(node, "coverage", "missing key 'rectangle' (the mission has none)");
-    }
-    planning::wall_rectangle_schema().apply(*rectangle, spec.rectangle);
-    CameraSpec camera;
-    if (const io::ConfigNode* c = node.find("camera")) camera_schema().apply(*c, camera);
-    spec.width_px = camera.width_px;
-    spec.height_px = camera.height_px;
-    spec.hfov_deg = camera.hfov_deg;
-    spec.vfov_deg = camera.vfov_deg;
-    const io::ConfigNode rest = without(node, {"rectangle", "camera", "cell_size_m", "max_range_m",
-                                               "max_incidence_deg", "max_mm_per_px", "min_views"});
-    coverage_schema().apply(rest, spec);
-    io::ConfigNode grid =
-        without(node, {"rectangle", "camera", "mount", "rate_hz", "occlusion_margin_m"});
-    coverage_config_schema().apply(grid, spec.config);
-    return spec;
-}
-
 /// The robot knows its own mounts and the surveyed UWB anchors.
 void calibrate(MissionScenario& m) {
     m.stack.lidar_expected = false;
@@ -283,47 +197,16 @@ MissionScenario from_document(const io::ConfigNode& root, const std::string& nam
         m.operator_script = control::operator_script_from_yaml(*script, "operator").commands();
     }
     if (const io::ConfigNode* coverage = root.find("coverage")) {
-        m.coverage = coverage_from_yaml(*coverage, required(root, "mission"));
+        std::optional<planning::WallRectangle> mission_rectangle;
+        if (const io::ConfigNode* r = required(root, "mission").find("rectangle")) {
+            mission_rectangle.emplace();
+            planning::wall_rectangle_schema().apply(*r, *mission_rectangle);
+        }
+        m.coverage = coverage_from_yaml(*coverage, mission_rectangle, "the mission has none");
     }
     calibrate(m);
     m.validate();
     return m;
-}
-
-/// The entry `key` of the map `node`, created (null) when absent.
-io::ConfigNode& entry(io::ConfigNode& node, const std::string& key) {
-    for (auto& [k, value] : node.map) {
-        if (k == key) return value;
-    }
-    return node.map.emplace_back(key, io::ConfigNode{}).second;
-}
-
-/// Applies one "a.b.c=value" override: the value (YAML: a scalar or a flow collection) replaces
-/// or adds the key, creating the maps on its way.
-void apply_override(io::ConfigNode& root, const std::string& assignment) {
-    const std::size_t eq = assignment.find('=');
-    if (eq == std::string::npos || eq == 0) {
-        throw ConfigError("--set " + assignment +
-                          ": expected KEY=VALUE (KEY dotted, e.g. "
-                          "stack.manager.tracking.use_vtp=false)");
-    }
-    const std::string key = assignment.substr(0, eq);
-    io::ConfigNode* node = &root;
-    std::size_t begin = 0;
-    while (true) {
-        const std::size_t dot = key.find('.', begin);
-        const std::string part = key.substr(begin, dot == std::string::npos ? dot : dot - begin);
-        if (part.empty()) throw ConfigError("--set " + assignment + ": empty key component");
-        if (node->is_null()) node->kind = io::ConfigNode::Kind::kMap;
-        if (!node->is_map()) {
-            throw ConfigError("--set " + assignment + ": '" + key.substr(0, begin - 1) +
-                              "' is not a map");
-        }
-        node = &entry(*node, part);
-        if (dot == std::string::npos) break;
-        begin = dot + 1;
-    }
-    *node = io::parse_yaml_string(assignment.substr(eq + 1), "--set " + key);
 }
 
 }  // namespace

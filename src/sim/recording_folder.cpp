@@ -28,13 +28,15 @@ const char* const kTopFiles[] = {layout::kGroundTruth,   layout::kImu,      layo
 const char* const kFrameFolders[] = {layout::kLidarDir, layout::kDepthDir,   layout::kImagesDir,
                                      layout::kSonarDir, layout::kRosetteDir, layout::kStereoDir};
 // Files of the frame folders besides the frames (each folder has a subset).
-const char* const kFrameFolderFiles[] = {layout::kTimes, layout::kPoses, layout::kExtrinsic,
-                                         layout::kVisibleDefects, layout::kSonarMeta};
+const char* const kFrameFolderFiles[] = {
+    layout::kTimes,     layout::kPoses,           layout::kExtrinsic,       layout::kVisibleDefects,
+    layout::kSonarMeta, layout::kDefectSightings, layout::kCameraIntrinsics};
 // write_world, and the descriptor cache `scantling localize` adds beside the map.
 // What a closed-loop run adds (io/mission_log.hpp).
 const char* const kMissionFiles[] = {layout::kMissionEstimates, layout::kMissionEstimatesTum,
                                      layout::kMissionCommands,  layout::kMissionEvents,
-                                     layout::kMissionPath,      layout::kMissionSummary};
+                                     layout::kMissionPath,      layout::kMissionSummary,
+                                     layout::kMissionSonarMap};
 const char* const kWorldFiles[] = {"map.ply", "mesh.ply", "metadata.json",
                                    layout::kWorldMapDescriptorCache};
 

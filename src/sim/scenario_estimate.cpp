@@ -13,7 +13,7 @@
 #include <scantling/core/error.hpp>
 #include <scantling/sim/scenario_limits.hpp>
 
-#include "detail/scenario_sensor_configs.hpp"
+#include <scantling/sim/sensor_configs.hpp>
 
 namespace scantling::sim {
 namespace {

@@ -10,8 +10,8 @@
 #include <scantling/sim/vio.hpp>
 #include <scantling/sim/vio_features.hpp>
 
+#include <scantling/sim/sensor_configs.hpp>
 #include "detail/scenario_parts.hpp"
-#include "detail/scenario_sensor_configs.hpp"
 
 namespace scantling::sim::detail {
 

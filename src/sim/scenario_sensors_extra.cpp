@@ -8,8 +8,8 @@
 #include <scantling/sim/rosette_lidar.hpp>
 #include <scantling/sim/stereo_points.hpp>
 
+#include <scantling/sim/sensor_configs.hpp>
 #include "detail/scenario_parts.hpp"
-#include "detail/scenario_sensor_configs.hpp"
 
 namespace scantling::sim::detail {
 

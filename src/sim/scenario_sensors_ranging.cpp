@@ -10,8 +10,8 @@
 #include <scantling/sim/uwb.hpp>
 #include <scantling/sim/wheel_odometry.hpp>
 
+#include <scantling/sim/sensor_configs.hpp>
 #include "detail/scenario_parts.hpp"
-#include "detail/scenario_sensor_configs.hpp"
 
 namespace scantling::sim::detail {
 

@@ -66,6 +66,25 @@ TEST(RovGuidance, DepthErrorPausesAndTheHeaveLoopCorrectsIt) {
     EXPECT_NEAR(deep.v_world_mps.z(), -0.3, 1e-12);  // kp · 1 m clamped to the heave limit
 }
 
+// A vertical slice: the target descends at 0.25 m/s. The PI alone lags it by v / kp ≈ 0.31 m,
+// beyond the 0.3 m pause bound; fed forward, the lag is the integral's transient only.
+TEST(RovGuidance, TheTargetsVerticalVelocityIsFedForwardToTheHeave) {
+    RovGuidance guidance;
+    Eigen::Vector3d p(0.0, 0.0, -1.0);
+    Eigen::Vector3d p_target = p;
+    double worst_lag_m = 0.0;
+    for (int k = 0; k < 400; ++k) {  // 20 s, 5 m down
+        GuidanceTarget target = target_at(p_target);
+        target.v_vertical_mps = -0.25;
+        const GuidanceCommand c = guidance.update(p, 0.0, target, kDt);
+        p += c.v_world_mps * kDt;
+        p_target.z() -= 0.25 * kDt;
+        worst_lag_m = std::max(worst_lag_m, std::abs(p.z() - p_target.z()));
+        EXPECT_FALSE(c.paused);
+    }
+    EXPECT_LT(worst_lag_m, 0.02);
+}
+
 // Kinematics (the ROV's velocity loop is fast against these speeds): from 3 m aside, 0.6 m too
 // shallow and 40° off, the vehicle catches a target moving at 0.25 m/s along x.
 TEST(RovGuidance, CatchesAMovingTargetAndResumes) {

@@ -195,7 +195,7 @@ TEST(MissionScenarioFaults, RefusesImpossibleFaults) {
               std::string::npos);
     EXPECT_NE(message("[{sensor: imu, kind: nan, start_s: -1, duration_s: 1}]").find("start_s"),
               std::string::npos);
-    EXPECT_NE(message("[{sensor: dvl, kind: nan, start_s: 1, duration_s: 1}]").find("dropout"),
+    EXPECT_NE(message("[{sensor: camera, kind: nan, start_s: 1, duration_s: 1}]").find("dropout"),
               std::string::npos);
     EXPECT_NE(
         message("[{sensor: imu, kind: nan, start_s: 1, duration_s: 1, gain: 2}]").find("gain"),

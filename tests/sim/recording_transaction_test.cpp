@@ -137,6 +137,14 @@ TEST_F(RecordingTransaction, OverwriteRefusesAFolderWithFilesThatAreNotARecordin
 TEST_F(RecordingTransaction, OnlyTheEntriesOfTheLayoutMakeARecording) {
     run_scenario(scenario(), rec());
     EXPECT_NO_THROW(check_replaceable_recording(rec()));
+    // What a camera and an ROV mission write are part of a recording too (an ROV run could
+    // not be replaced with --force before: images/defect_sightings.csv was "foreign").
+    fs::create_directories(rec() + "/images");
+    std::ofstream(rec() + "/images/defect_sightings.csv") << "x";
+    std::ofstream(rec() + "/images/camera.json") << "x";
+    fs::create_directories(rec() + "/mission");
+    std::ofstream(rec() + "/mission/sonar_map.csv") << "x";
+    EXPECT_NO_THROW(check_replaceable_recording(rec()));
     const auto expect_refused = [&](const std::string& entry) {
         try {
             check_replaceable_recording(rec());

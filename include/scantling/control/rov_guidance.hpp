@@ -12,13 +12,13 @@
 ///   v_d = v_t + v_a                      then clamped to max_speed_mps
 /// with v_t the target's own velocity (the survey speed along the path, zero while paused),
 /// κ = max_approach_speed_mps and Δ = transient_m (larger: softer approach).
-/// Depth: v_z = PID(z_t − z) clamped to the heave limit. Heading: ψ̇ = clamp(k_ψ wrap(ψ_t − ψ)).
-/// Pause (SPEC: "if heading or depth error is too large, pause the inspection motion until
-/// corrected"): entered when |ψ_t − ψ| > max_heading_error_rad or |z_t − z| >
-/// max_depth_error_m; left when both are below resume_fraction × their bounds (hysteresis, so
-/// an error at the bound does not toggle it every tick). While paused v_t is not applied (the
-/// vehicle holds at the target point, which the caller stops advancing), and the heading and
-/// depth loops keep correcting.
+/// Depth: v_z = v_t,z + PID(z_t − z), the sum clamped to the PID's output range (the heave limit).
+/// Heading: ψ̇ = clamp(k_ψ wrap(ψ_t − ψ)). Pause (SPEC: "if heading or depth error is too large,
+/// pause the inspection motion until corrected"): entered when |ψ_t − ψ| > max_heading_error_rad or
+/// |z_t − z| > max_depth_error_m; left when both are below resume_fraction × their bounds
+/// (hysteresis, so an error at the bound does not toggle it every tick). While paused v_t is not
+/// applied (the vehicle holds at the target point, which the caller stops advancing), and the
+/// heading and depth loops keep correcting.
 ///
 /// Frames: world, z up; yaw about z. Thread-safety: mutable state (PID, pause), one per vehicle.
 /// Deterministic. Cost: O(1).
@@ -50,7 +50,10 @@ struct RovGuidanceConfig {
 struct GuidanceTarget {
     Eigen::Vector3d p_world_m = Eigen::Vector3d::Zero();
     Eigen::Vector2d v_horizontal_mps = Eigen::Vector2d::Zero();  ///< the target's own velocity
-    double yaw_rad = 0.0;                                        ///< facing the hull
+    /// The target's vertical velocity, fed forward to the heave command (a vertical slice's
+    /// descent: without it the PI lags a target moving at 0.25 m/s by 0.3 m, the pause bound).
+    double v_vertical_mps = 0.0;
+    double yaw_rad = 0.0;  ///< facing the hull
 };
 
 struct GuidanceCommand {

@@ -32,6 +32,12 @@
 /// The barometer measures p_z + b_baro with b_baro a random walk (weather, ground effect): the
 /// first sample initialises b_baro (correlated with p_z), later ones update both.
 ///
+/// Underwater (an ROV): a DVL measures the velocity over the seabed in its own frame, mounted
+/// by T_body_velocity_sensor: v_sensor = R_bsᵀ (Rᵀ v + ω × t_bs), with ω the bias-corrected
+/// gyro rate of the held sample (the lever arm's rotational velocity; that one sample's white
+/// noise, density² / IMU interval, is added to the DVL's covariance). A pressure sensor gives
+/// p_z directly (no bias state: water pressure is an absolute depth). Both are χ²-gated.
+///
 /// Timing: a measurement newer than the filter time predicts to its stamp with the last IMU
 /// sample held; one up to max_measurement_delay_s older is applied at the filter time (error
 /// ≤ speed × delay); older ones are refused (kTooOld). An IMU sample older than the filter time
@@ -84,6 +90,33 @@ struct BarometerMeasurement {
     double sigma_m = 0.5;  ///< white noise of this sample, > 0
 };
 
+/// A velocity over ground measured in a sensor frame mounted on the body (a DVL's bottom-lock
+/// velocity): v_sensor = R_body_sensorᵀ (R_odom_bodyᵀ v_odom + ω_body × t_body_sensor).
+struct BodyVelocityMeasurement {
+    double stamp_s = 0.0;
+    Eigen::Vector3d v_sensor_mps = Eigen::Vector3d::Zero();
+    Eigen::Matrix3d covariance_mps2 =
+        Eigen::Matrix3d::Identity() *
+        1e-4;  ///< of v_sensor, sensor axes; symmetric positive definite
+};
+
+/// The vehicle's height in the odom frame from a pressure sensor: z_odom = surface_z_odom − depth.
+/// Unlike the barometer there is no bias state: water pressure gives depth absolutely (the
+/// caller converts depth to odom z with the surface's height in odom).
+struct DepthMeasurement {
+    double stamp_s = 0.0;
+    double z_odom_m = 0.0;  ///< the body origin's z in odom, m
+    double sigma_m = 0.02;  ///< > 0
+};
+
+/// A heading in odom: a compass, or the direction of a straight structure whose direction is
+/// known (the ROV's hull line, mission/rov_stack.hpp). Yaw of R = R_z(ψ) R_y(θ) R_x(φ).
+struct YawMeasurement {
+    double stamp_s = 0.0;
+    double yaw_odom_rad = 0.0;  ///< any value; the residual is wrapped to (−π, π]
+    double sigma_rad = 0.05;    ///< > 0
+};
+
 enum class ImuPredictionStatus { kOk, kFirst, kGap, kOutOfOrder, kNotInitialized };
 std::string_view to_string(ImuPredictionStatus status);
 
@@ -117,6 +150,12 @@ struct LocalEkfCounters {
     std::size_t ranges_rejected = 0;  ///< χ² gate only (invalid samples are not counted)
     std::size_t barometer_applied = 0;
     std::size_t barometer_rejected = 0;
+    std::size_t velocity_applied = 0;
+    std::size_t velocity_rejected = 0;  ///< χ² gate only
+    std::size_t depth_applied = 0;
+    std::size_t depth_rejected = 0;  ///< χ² gate only
+    std::size_t yaw_applied = 0;
+    std::size_t yaw_rejected = 0;  ///< χ² gate only
 };
 
 struct LocalEkfConfig {
@@ -159,6 +198,12 @@ struct LocalEkfConfig {
     /// Barometer bias random walk, m per √s: indoor pressure drifts ~1 m in 10 min.
     double barometer_bias_random_walk_m_per_sqrt_s = 0.04;
     double barometer_gate_chi2 = 10.83;  ///< 1 DoF, 99.9 %
+    /// Body-velocity sensor (a DVL): its frame on the body; the measured velocity is in its axes
+    /// and at its origin, so an offset mount adds the lever arm's ω × t to the body's velocity.
+    Eigen::Isometry3d T_body_velocity_sensor = Eigen::Isometry3d::Identity();
+    double velocity_gate_chi2 = 16.27;  ///< 3 DoF, 99.9 %
+    double depth_gate_chi2 = 10.83;     ///< 1 DoF, 99.9 %
+    double yaw_gate_chi2 = 10.83;       ///< 1 DoF, 99.9 %
 
     /// Throws ConfigError naming the field ("local_ekf.max_imu_gap_s = 0, expected finite > 0").
     void validate(std::string_view prefix = "local_ekf") const;
@@ -189,6 +234,13 @@ class LocalEkf {
     /// Fuses the down-looking range (invalid records: kInvalid). InputError on a valid NaN.
     UpdateResult update_range(const io::RangeRecord& range);
     UpdateResult update_barometer(const BarometerMeasurement& altitude);
+    /// Fuses a DVL velocity. InputError on a non-finite value or a covariance that is not
+    /// symmetric positive definite.
+    UpdateResult update_body_velocity(const BodyVelocityMeasurement& velocity);
+    /// Fuses a pressure depth as odom z. InputError on a non-finite value or sigma_m <= 0.
+    UpdateResult update_depth(const DepthMeasurement& depth);
+    /// Fuses a heading; InputError on a non-finite value or sigma <= 0.
+    UpdateResult update_yaw(const YawMeasurement& yaw);
 
     bool initialized() const { return initialized_; }
     double stamp_s() const { return stamp_s_; }
@@ -233,6 +285,7 @@ class LocalEkf {
     StateMatrix P_ = StateMatrix::Zero();
     std::optional<io::ImuRecord> last_imu_;
     BodyRates held_;
+    double imu_interval_s_ = 0.0;  ///< between the last two IMU samples (0: fewer than two)
     std::optional<double> clone_stamp_s_;
     bool barometer_initialized_ = false;
     LocalEkfCounters counters_;
@@ -251,6 +304,19 @@ struct RangePrediction {
 };
 RangePrediction predict_range(const Eigen::Isometry3d& T_odom_body,
                               const Eigen::Isometry3d& T_body_sensor, double floor_height_m);
+
+/// Predicted velocity in a body-mounted sensor's axes and its Jacobians (filter convention):
+/// v_sensor = R_bsᵀ (Rᵀ v + ω × t_bs), ω = the bias-corrected body rate.
+struct BodyVelocityPrediction {
+    Eigen::Vector3d v_sensor_mps = Eigen::Vector3d::Zero();
+    Eigen::Matrix3d d_theta = Eigen::Matrix3d::Zero();      ///< ∂/∂δθ (left, odom)
+    Eigen::Matrix3d d_velocity = Eigen::Matrix3d::Zero();   ///< ∂/∂δv (odom)
+    Eigen::Matrix3d d_gyro_bias = Eigen::Matrix3d::Zero();  ///< ∂/∂δb_g (ω = ω_imu − b_g)
+};
+BodyVelocityPrediction predict_body_velocity(const Eigen::Matrix3d& R_odom_body,
+                                             const Eigen::Vector3d& v_odom_mps,
+                                             const Eigen::Vector3d& omega_body_radps,
+                                             const Eigen::Isometry3d& T_body_sensor);
 
 /// χ² quantile at 99.9 % for 1 to 6 degrees of freedom.
 double chi2_quantile_999(int dof);

@@ -19,7 +19,10 @@
 /// a few centimetres proud of it (a hull's flare), and must not hide its own cells.
 
 #include <Eigen/Geometry>
+#include <optional>
 #include <string_view>
+
+#include <scantling/io/config_node.hpp>
 
 #include <scantling/core/pinhole_intrinsics.hpp>
 #include <scantling/perception/camera_coverage.hpp>
@@ -47,5 +50,12 @@ struct CoverageSpec {
     /// Throws ConfigError naming "<prefix>.<field>".
     void validate(std::string_view prefix = "coverage") const;
 };
+
+/// `coverage:` of a mission document (see the file comment). Without a `rectangle` key the
+/// spec takes `default_rectangle` (the mission's), and without one either it is a ParseError
+/// naming the file and line and `missing_why`. Unknown keys are errors.
+CoverageSpec coverage_from_yaml(const io::ConfigNode& node,
+                                const std::optional<planning::WallRectangle>& default_rectangle,
+                                std::string_view missing_why);
 
 }  // namespace scantling::mission

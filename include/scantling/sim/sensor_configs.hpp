@@ -1,8 +1,11 @@
 #pragma once
-// The effective config of each scenario sensor: the preset with the scenario's overrides
-// (rate, size, noise, mount), validated. The runner builds its sensors from these and the
-// scenario's validation and output estimate read rates and frame sizes from the same ones,
-// so what is checked is what runs. Each throws ConfigError naming `prefix` ("sensors[1]").
+/// @file
+/// The effective config of each scenario sensor: the preset with the scenario's overrides
+/// (rate, size, noise, mount), validated. The runner builds its sensors from these and the
+/// scenario's validation and output estimate read rates and frame sizes from the same ones,
+/// so what is checked is what runs; a closed-loop mission calibrates its robot's stack from
+/// them too (a camera's intrinsics, a sonar's mount). Each throws ConfigError naming `prefix`
+/// ("sensors[1]").
 
 #include <string>
 

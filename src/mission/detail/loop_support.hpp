@@ -1,0 +1,68 @@
+#pragma once
+// What the vehicles' closed loops share (closed_loop.cpp, rov_loop.cpp): the stage clock, the
+// mission files besides the simulator's streams, and the logging of operator commands and
+// injected faults.
+#include <chrono>
+#include <cstddef>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <scantling/control/mission_manager.hpp>
+#include <scantling/io/mission_log.hpp>
+#include <scantling/mission/fault_injection.hpp>
+#include <scantling/planning/waypoints.hpp>
+#include <scantling/sim/recording_writer.hpp>
+#include <scantling/sim/scenario.hpp>
+#include <scantling/sim/simulator.hpp>
+
+namespace scantling::mission::detail {
+
+/// Accumulates the wall time of the scope into `total_s`.
+class StageClock {
+  public:
+    explicit StageClock(double& total_s) : total_s_(total_s) {}
+    ~StageClock() {
+        total_s_ +=
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    }
+    StageClock(const StageClock&) = delete;
+    StageClock& operator=(const StageClock&) = delete;
+
+  private:
+    double& total_s_;
+    std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+};
+
+/// Everything the loop writes besides the simulator's streams.
+struct MissionFiles {
+    std::vector<io::EstimateRecord> estimates;
+    std::vector<io::CommandRecord> commands;
+    std::string events;
+    std::size_t num_events = 0;
+    bool limited = false;  ///< the safety layer's state at the previous tick
+
+    void add_event(double t_s, const std::string& type, const std::string& json) {
+        events += io::event_line(t_s, type, json);
+        ++num_events;
+    }
+};
+
+void write_text(const std::string& path, const std::string& text);
+
+void log_operator(MissionFiles& files, std::span<const control::OperatorCommand> commands,
+                  double t_s);
+void log_faults(MissionFiles& files, FaultInjector& faults, double t_s);
+
+std::vector<sim::SensorType> sensor_types(const sim::Scenario& simulation);
+
+/// summary.json's scenario block of the recording.
+sim::RecordingSummary recording_summary(const std::string& name, const std::string& description,
+                                        const sim::Scenario& simulation, const sim::Simulator& sim);
+
+/// DIR/mission/: estimates (CSV and TUM), commands, events, the intended path and `summary`
+/// (summary.json), in the writer's staging directory.
+void write_mission_files(const sim::RecordingWriter& writer, const MissionFiles& files,
+                         const planning::WaypointPath& path, const std::string& summary);
+
+}  // namespace scantling::mission::detail

@@ -1,0 +1,253 @@
+// The ROV hull survey's closed loop (rov_mission.hpp).
+#include <scantling/mission/rov_mission.hpp>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <variant>
+
+#include <scantling/core/error.hpp>
+#include <scantling/io/recording.hpp>
+#include <scantling/sim/recording_writer.hpp>
+#include <scantling/sim/scenario_runner.hpp>
+#include <scantling/sim/simulator.hpp>
+
+#include "detail/coverage_monitor.hpp"
+#include "detail/loop_support.hpp"
+#include "detail/rov_metrics.hpp"
+
+namespace scantling::mission {
+namespace {
+
+using detail::MissionFiles;
+using detail::StageClock;
+
+/// Sonar pings and images after the motion and ranging samples of their tick.
+bool is_perception(const sim::SensorReading& r) {
+    return std::holds_alternative<sim::SonarReading>(r.data) ||
+           std::holds_alternative<sim::ImageReading>(r.data);
+}
+
+/// The loop's per-run state besides the stack.
+struct RovLoop {
+    sim::Simulator& sim;
+    RovStack& stack;
+    detail::RovMetrics& metrics;
+    LoopTiming& timing;
+};
+
+void feed_image(RovLoop& loop, const sim::ImageReading& image) {
+    const auto lasers = loop.stack.add_image(image.image, image.stamp_s);
+    if (lasers && lasers->ok()) {
+        loop.metrics.add_laser(loop.sim.scene(), image.T_world_sensor, lasers->distance_m);
+    }
+}
+
+/// One reading to the stack, as the io type a recording gives.
+void feed(RovLoop& loop, const sim::SensorReading& reading) {
+    StageClock clock(is_perception(reading) ? loop.timing.odometry_s : loop.timing.estimators_s);
+    RovStack& stack = loop.stack;
+    if (const auto* imu = std::get_if<sim::ImuSample>(&reading.data)) {
+        stack.add_imu({imu->stamp_s, imu->specific_force_mps2, imu->angular_rate_radps});
+    } else if (const auto* dvl = std::get_if<sim::DvlSample>(&reading.data)) {
+        stack.add_dvl({dvl->stamp_s, dvl->valid, dvl->v_body_mps, dvl->altitude_m});
+    } else if (const auto* p = std::get_if<sim::PressureSample>(&reading.data)) {
+        stack.add_pressure({p->stamp_s, p->pressure_pa, p->depth_m});
+    } else if (const auto* sonar = std::get_if<sim::SonarReading>(&reading.data)) {
+        stack.add_sonar(sim::to_sonar_ping(sonar->image));
+    } else if (const auto* image = std::get_if<sim::ImageReading>(&reading.data)) {
+        feed_image(loop, *image);
+    }
+}
+
+void deliver(RovLoop& loop, const sim::SensorReading& reading, const FaultInjector& faults,
+             sim::RecordingWriter& writer) {
+    if (const SensorFault* fault = faults.fault_of(reading)) {
+        if (fault->kind == FaultKind::kNan) feed(loop, poisoned(reading));
+        return;
+    }
+    {
+        StageClock clock(loop.timing.record_s);
+        writer.add(reading);
+    }
+    feed(loop, reading);
+}
+
+io::EstimateRecord estimate_record(const RovStack& stack, double t_s) {
+    const localization::DroneState s = stack.estimate();
+    const auto& P = s.covariance;
+    return {.stamp_s = t_s,
+            .T_world_body = s.T_odom_body,
+            .v_world_mps = s.v_odom_mps,
+            .position_sigma_m =
+                Eigen::Vector3d(std::sqrt(P(0, 0)), std::sqrt(P(1, 1)), std::sqrt(P(2, 2))),
+            .yaw_sigma_rad = std::sqrt(P(5, 5)),
+            .valid = stack.estimate_valid(t_s)};
+}
+
+void log_command(MissionFiles& files, const RovStackCommand& c, double t_s) {
+    files.commands.push_back({.stamp_s = t_s,
+                              .v_world_mps = c.v_world_mps,
+                              .yaw_rate_radps = c.yaw_rate_radps,
+                              .v_requested_world_mps = c.v_world_mps,
+                              .limited = c.backing_off});
+    for (const StackEvent& e : c.events) files.add_event(e.t_s, e.type, e.json);
+}
+
+bool ended(control::MissionState state) {
+    return state == control::MissionState::kCompleted || state == control::MissionState::kAborted;
+}
+
+/// The sonar map's voxels for the operator: mean, normal, points and uncertainty.
+std::string sonar_map_csv(const mapping::SonarInspectionMap& map) {
+    std::string text = "# x_m y_m z_m nx ny nz points uncertainty_m first_s last_s\n";
+    for (const mapping::SonarVoxel& v : map.voxels()) {
+        text += fmt::format("{:.4f} {:.4f} {:.4f} {:.4f} {:.4f} {:.4f} {} {:.4f} {:.3f} {:.3f}\n",
+                            v.mean_world_m.x(), v.mean_world_m.y(), v.mean_world_m.z(),
+                            v.normal_world.x(), v.normal_world.y(), v.normal_world.z(),
+                            v.num_points, v.uncertainty_m, v.first_stamp_s, v.last_stamp_s);
+    }
+    return text;
+}
+
+/// The stack's counters and maps into the result.
+void add_stack_figures(const RovStack& stack, RovMissionResult& r) {
+    const RovStack::Counters& c = stack.counters();
+    r.contacts = stack.contacts().num_contacts();
+    r.pings = c.pings;
+    r.hull_lines = c.hull_lines;
+    r.images = c.images;
+    r.laser_measurements = c.laser_measurements;
+    r.dvl_invalid = c.dvl_invalid;
+    r.inputs_rejected = c.inputs_rejected;
+    r.holes_found = c.holes_found;
+    r.reinspection_rounds = c.reinspection_rounds;
+    r.believed_coverage_final = stack.believed_coverage().result().covered_fraction;
+    const std::vector<mapping::SonarVoxel> voxels = stack.sonar_map().voxels();
+    r.sonar_voxels = voxels.size();
+    double sum = 0.0;
+    for (const mapping::SonarVoxel& v : voxels) sum += v.uncertainty_m;
+    r.sonar_voxel_uncertainty_mean_m = voxels.empty() ? 0.0 : sum / voxels.size();
+}
+
+}  // namespace
+
+RovMissionResult run_rov_mission(const RovMissionScenario& scenario, const std::string& directory,
+                                 const MissionRunOptions& options) {
+    const auto wall_start = std::chrono::steady_clock::now();
+    scenario.validate();
+    const sim::Scenario& simulation = scenario.simulation;
+    sim::Simulator sim(simulation, scenario.T_world_body_start());
+    sim::RecordingWriter writer(directory, options.overwrite);
+    if (simulation.export_world.world) {
+        writer.write_world(sim.world(), {.map_spacing_m = simulation.export_world.map_spacing_m,
+                                         .seed = Rng(simulation.seed).split(100).next_u64()});
+    }
+    const planning::HullSurveyPlan plan = planning::plan_hull_survey(scenario.flown_plan());
+    const planning::WaypointPath survey =
+        planning::hull_survey_in_world(plan, scenario.T_world_flown_hull());
+    CoverageSpec section_spec;
+    section_spec.rectangle = scenario.section();
+    RovStack stack(scenario.stack, survey, section_spec.inspection_rectangle(),
+                   scenario.T_world_body_start(), 0.0);
+    detail::RovMetrics metrics(scenario.plan.stand_off_m, scenario.stack.T_body_camera);
+    control::OperatorScript script(scenario.operator_script);
+    MissionFiles files;
+    LoopTiming timing;
+    RovLoop loop{sim, stack, metrics, timing};
+    std::optional<detail::CoverageMonitor> coverage;
+    if (scenario.coverage) coverage.emplace(*scenario.coverage, sim.scene());
+    std::optional<perception::CoverageResult> coverage_survey;
+    double believed_survey = 0.0;
+    FaultInjector faults(scenario.faults, detail::sensor_types(simulation));
+    std::optional<double> ended_at_s;
+    double next_progress_s = 0.0;
+
+    sim::SimStep step = sim.start();
+    while (true) {
+        if (options.stop_requested && options.stop_requested()) {
+            throw sim::ScenarioInterrupted(
+                fmt::format("interrupted at simulated t = {:.3f} s; nothing was written to {}",
+                            sim.now_s(), directory));
+        }
+        const double t_s = sim.now_s();
+        {
+            StageClock clock(timing.record_s);
+            writer.add_ground_truth(t_s, step.truth.T_world_body);
+        }
+        std::stable_partition(step.readings.begin(), step.readings.end(),
+                              [](const sim::SensorReading& r) { return !is_perception(r); });
+        detail::log_faults(files, faults, t_s);
+        for (const sim::SensorReading& reading : step.readings) {
+            deliver(loop, reading, faults, writer);
+        }
+        std::vector<control::OperatorCommand> commands = script.due(t_s);
+        if (sim.tick() == 0)
+            commands.insert(commands.begin(), {control::OperatorCommandType::kStart});
+        detail::log_operator(files, commands, t_s);
+        const SurveyPhase phase_before = stack.phase();
+        const RovStackCommand command = [&] {
+            StageClock clock(timing.command_s);
+            return stack.command(t_s, commands);
+        }();
+        if (phase_before == SurveyPhase::kSurvey && stack.phase() != SurveyPhase::kSurvey) {
+            // The survey's own figures, before any re-inspection.
+            if (coverage) coverage_survey = coverage->result();
+            believed_survey = stack.believed_coverage().result().covered_fraction;
+        }
+        {
+            StageClock clock(timing.log_s);
+            log_command(files, command, t_s);
+            files.estimates.push_back(estimate_record(stack, t_s));
+            metrics.add_tick(sim.scene(), step.truth, stack.estimate(), command, t_s);
+            if (coverage && command.state == control::MissionState::kRunning) {
+                coverage->add(t_s, step.truth.T_world_body);
+            }
+        }
+        if (options.progress && t_s >= next_progress_s) {
+            options.progress({t_s, simulation.duration_s, command.state});
+            next_progress_s += 1.0;
+        }
+        if (ended(command.state) && !ended_at_s) ended_at_s = t_s;
+        if (ended_at_s && t_s >= *ended_at_s + scenario.linger_s) break;
+        if (t_s >= simulation.duration_s - 1e-9) {
+            files.add_event(
+                t_s, "timeout",
+                fmt::format(R"({{"state":"{}","phase":"{}"}})", control::to_string(command.state),
+                            to_string(stack.phase())));
+            break;
+        }
+        StageClock clock(timing.simulate_s);
+        step = sim.step(
+            {.v_world_mps = command.v_world_mps, .yaw_rate_radps = command.yaw_rate_radps});
+    }
+    RovMissionResult result = metrics.result(stack.state());
+    add_stack_figures(stack, result);
+    result.waypoints_survey = survey.waypoints.size();
+    result.believed_coverage_survey =
+        stack.phase() == SurveyPhase::kSurvey ? result.believed_coverage_final : believed_survey;
+    if (coverage) {
+        result.coverage = coverage->result();
+        result.coverage_survey = coverage_survey ? coverage_survey : result.coverage;
+    }
+    result.timing = timing;
+    result.directory = directory;
+    result.sim_time_s = sim.now_s();
+    result.events = files.num_events;
+    writer.finish(detail::recording_summary(scenario.name, scenario.description, simulation, sim));
+    result.wall_time_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+    result.real_time_factor = result.sim_time_s / std::max(result.wall_time_s, 1e-9);
+    detail::write_mission_files(writer, files, survey, detail::rov_summary_json(scenario, result));
+    detail::write_text((std::filesystem::path(writer.staging_directory()) /
+                        io::recording_layout::kMissionDir / io::recording_layout::kMissionSonarMap)
+                           .string(),
+                       sonar_map_csv(stack.sonar_map()));
+    writer.write_timing(result.wall_time_s, result.real_time_factor);
+    writer.commit();
+    return result;
+}
+
+}  // namespace scantling::mission
