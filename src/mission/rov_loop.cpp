@@ -152,7 +152,8 @@ RovMissionResult run_rov_mission(const RovMissionScenario& scenario, const std::
     section_spec.rectangle = scenario.section();
     RovStack stack(scenario.stack, survey, section_spec.inspection_rectangle(),
                    scenario.T_world_body_start(), 0.0);
-    detail::RovMetrics metrics(scenario.plan.stand_off_m, scenario.stack.T_body_camera);
+    detail::RovMetrics metrics(scenario.plan.stand_off_m, scenario.stack.T_body_camera,
+                               detail::appendage_tags(sim.scene()));
     control::OperatorScript script(scenario.operator_script);
     MissionFiles files;
     LoopTiming timing;

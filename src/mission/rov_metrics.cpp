@@ -6,17 +6,20 @@
 #include <nlohmann/json.hpp>
 
 #include <scantling/core/angles.hpp>
+#include <scantling/sim/world.hpp>
 
 #include "detail/frames.hpp"
 
 namespace scantling::mission::detail {
 
 std::optional<StandOffSample> true_stand_off(const sim::SceneView& scene,
-                                             const Eigen::Vector3d& p_camera_world,
-                                             double yaw_rad) {
+                                             const Eigen::Vector3d& p_camera_world, double yaw_rad,
+                                             std::span<const int> skipped_tags) {
     const Eigen::Vector3d heading(std::cos(yaw_rad), std::sin(yaw_rad), 0.0);
     const sim::RayHit hit = scene.cast(p_camera_world, heading, kMaxStandOffRayM);
     if (!std::isfinite(hit.range_m)) return std::nullopt;
+    if (std::find(skipped_tags.begin(), skipped_tags.end(), hit.surface_tag) != skipped_tags.end())
+        return std::nullopt;
     const Eigen::Vector2d inward = -hit.normal.head<2>();
     if (inward.norm() < 1e-6) return std::nullopt;  // a horizontal surface: not the side
     const double heading_error = std::atan2(heading.x() * inward.y() - heading.y() * inward.x(),
@@ -25,8 +28,19 @@ std::optional<StandOffSample> true_stand_off(const sim::SceneView& scene,
                           .heading_error_rad = heading_error};
 }
 
-RovMetrics::RovMetrics(double wanted_stand_off_m, const Eigen::Isometry3d& T_body_camera)
-    : wanted_m_(wanted_stand_off_m), T_body_camera_(T_body_camera) {}
+std::vector<int> appendage_tags(const sim::SceneView& scene) {
+    std::vector<int> tags;
+    for (const char* name : {"anode", "bilge_keel", "sea_chest_grating"}) {
+        if (const int tag = sim::find_surface(scene.metadata, name); tag >= 0) tags.push_back(tag);
+    }
+    return tags;
+}
+
+RovMetrics::RovMetrics(double wanted_stand_off_m, const Eigen::Isometry3d& T_body_camera,
+                       std::vector<int> skipped_tags)
+    : wanted_m_(wanted_stand_off_m),
+      T_body_camera_(T_body_camera),
+      skipped_tags_(std::move(skipped_tags)) {}
 
 void RovMetrics::add_tick(const sim::SceneView& scene, const sim::MotionState& truth,
                           const localization::DroneState& estimate, const RovStackCommand& command,
@@ -49,7 +63,7 @@ void RovMetrics::add_tick(const sim::SceneView& scene, const sim::MotionState& t
     paused_ += command.guidance_paused ? 1 : 0;
     backing_off_ += command.backing_off ? 1 : 0;
     const auto sample = true_stand_off(scene, truth.T_world_body * T_body_camera_.translation(),
-                                       yaw_of(truth.T_world_body.linear()));
+                                       yaw_of(truth.T_world_body.linear()), skipped_tags_);
     if (!sample) return;
     const double error_m = std::abs(sample->stand_off_m - wanted_m_);
     stand_off_sum_m_ += error_m;

@@ -51,6 +51,23 @@ void RovDynamicsConfig::validate(std::string_view prefix) const {
     }
     detail::require_non_negative(prefix, "thrust_time_constant_s", thrust_time_constant_s);
     current.validate(detail::sub(prefix, "current"));
+    if (pushes.size() > kMaxRovPushes) {
+        throw ConfigError(fmt::format("{}.pushes: {} entries, expected at most {}", prefix,
+                                      pushes.size(), kMaxRovPushes));
+    }
+    for (std::size_t i = 0; i < pushes.size(); ++i) {
+        const std::string item = fmt::format("pushes[{}]", i);
+        const RovPush& push = pushes[i];
+        if (!(std::isfinite(push.start_s) && push.start_s >= 0.0)) {
+            throw ConfigError(fmt::format("{}.{}.start_s = {}, expected finite >= 0", prefix, item,
+                                          push.start_s));
+        }
+        detail::require_positive(prefix, item + ".duration_s", push.duration_s);
+        if (!push.acceleration_world_mps2.allFinite()) {
+            throw ConfigError(
+                fmt::format("{}.{}.acceleration_world_mps2 is not finite", prefix, item));
+        }
+    }
 }
 
 RovDynamics::RovDynamics(const RovDynamicsConfig& config,
@@ -74,6 +91,19 @@ Eigen::Vector3d RovDynamics::world_velocity() const {
     return state_.T_world_body.linear() * nu_.head<3>() + current_.value();
 }
 
+void RovDynamics::add_pushes(double dt_s) {
+    const double t0 = state_.stamp_s;
+    const Eigen::Matrix3d R =
+        Eigen::AngleAxisd(yaw_rad_, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    for (const RovPush& push : config_.pushes) {
+        // The share of this step inside the push's window: its velocity change.
+        const double overlap_s =
+            std::min(t0 + dt_s, push.start_s + push.duration_s) - std::max(t0, push.start_s);
+        if (overlap_s > 0.0)
+            nu_.head<3>() += R.transpose() * push.acceleration_world_mps2 * overlap_s;
+    }
+}
+
 const MotionState& RovDynamics::step(const RovCommand& command) {
     const Eigen::Vector4d raw(command.surge_mps, command.sway_mps, command.heave_mps,
                               command.yaw_rate_radps);
@@ -88,6 +118,7 @@ const MotionState& RovDynamics::step(const RovCommand& command) {
         const double d = 1.0 / config_.damping_time_constant_s[i];
         axis_step(nu_[i], thrust_[i], cmd[i] * d, d, b, dt);
     }
+    add_pushes(dt);
     yaw_rad_ += 0.5 * (r0 + nu_[3]) * dt;
     current_.step(dt);
     Eigen::Isometry3d T = Eigen::Isometry3d::Identity();

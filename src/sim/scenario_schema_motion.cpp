@@ -129,12 +129,22 @@ ConfigSchema<MavDynamicsConfig> mav_schema() {
     return s;
 }
 
+ConfigSchema<RovPush> rov_push_schema() {
+    using C = RovPush;
+    ConfigSchema<C> s;
+    s.field("start_s", &C::start_s, "simulated time, s", kNonNegative)
+        .field("duration_s", &C::duration_s, "s", kPositive)
+        .field("acceleration_world_mps2", &C::acceleration_world_mps2, "m/s², world frame");
+    return s;
+}
+
 ConfigSchema<RovDynamicsConfig> rov_schema() {
     using C = RovDynamicsConfig;
     ConfigSchema<C> s;
     // Damping and command limits (4-vectors) keep the model's defaults.
     s.field("thrust_time_constant_s", &C::thrust_time_constant_s, "", kNonNegative)
-        .section("current", &C::current, gust_schema());
+        .section("current", &C::current, gust_schema())
+        .list("pushes", &C::pushes, rov_push_schema(), "out-of-view contacts");
     return s;
 }
 

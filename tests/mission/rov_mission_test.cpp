@@ -127,6 +127,30 @@ TEST(RovHullSurvey, SonarPingsOfNaNsAreDroppedAndReported) {
     EXPECT_NE(events_of(r).find(R"("sensor":"sonar")"), std::string::npos);
 }
 
+// A bump from below, out of the camera's and the sonar's view (a bilge keel under the vehicle):
+// 6 m/s² upwards for 50 ms, a 0.3 m/s kick. The IMU sees it, the vehicle backs off upwards for
+// 2 s, away from the obstacle, reports it, and then resumes the survey.
+TEST(RovHullSurvey, AnOutOfViewContactMakesTheVehicleBackOffAndReportIt) {
+    std::string yaml = section_yaml();
+    const std::string current = "rov: {current: {mean: [0.1, 0.05, 0.0], sigma: [0.02, 0.02, 0.0]}";
+    yaml.replace(yaml.find(current), current.size(),
+                 current +
+                     ", pushes: [{start_s: 30.0, duration_s: 0.05, "
+                     "acceleration_world_mps2: [0.0, 0.0, 6.0]}]");
+    const RovMissionResult r = run(yaml, "rov_contact");
+    EXPECT_TRUE(r.completed);
+    EXPECT_EQ(r.contacts, 1u);
+    EXPECT_NEAR(static_cast<double>(r.backing_off_ticks), 2.0 / 0.005, 2.0);
+    const std::string events = events_of(r);
+    const std::size_t at = events.find(R"("type":"contact")");
+    ASSERT_NE(at, std::string::npos);
+    // The impulse (and the back-off) points up, away from the obstacle below.
+    const std::size_t open = events.find('[', events.find("impulse_direction_world", at));
+    const std::size_t second_comma = events.find(',', events.find(',', open) + 1);
+    EXPECT_GT(std::stod(events.substr(second_comma + 1)), 0.99) << events.substr(open, 40);
+    EXPECT_LT(r.stand_off_error_mean_m, 0.10);
+}
+
 TEST(RovHullSurvey, AnImpossiblePlanIsRefusedNamingTheField) {
     auto with = [](const std::string& from, const std::string& to) {
         std::string yaml = section_yaml();

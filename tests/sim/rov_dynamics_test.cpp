@@ -100,6 +100,23 @@ TEST(RovDynamics, SlowlyVaryingCurrentIsSeededAndDeterministic) {
     EXPECT_NE(a.state().T_world_body.translation(), d.state().T_world_body.translation());
 }
 
+// A contact: 6 m/s² along world y for 50 ms on a vehicle facing +y (yaw 90°) is a 0.3 m/s kick
+// into its surge, which the damping then takes back; the acceleration shows in the state (the
+// IMU's input) while the push lasts, and only then.
+TEST(RovDynamics, APushKicksTheVehicleOverItsWindow) {
+    RovDynamicsConfig c = still_water(0.0);
+    c.pushes.push_back({.start_s = 1.0, .duration_s = 0.05, .acceleration_world_mps2 = {0, 6, 0}});
+    const Eigen::Isometry3d facing_y(Eigen::AngleAxisd(M_PI / 2.0, Eigen::Vector3d::UnitZ()));
+    RovDynamics rov(c, facing_y, 1);
+    run(rov, {}, 1.0);
+    EXPECT_NEAR(rov.state().a_world_mps2.norm(), 0.0, 1e-12);
+    run(rov, {}, 0.05);
+    EXPECT_NEAR(rov.water_velocity()[0], 0.3 * std::exp(-0.005 / 1.2), 0.02);  // surge
+    EXPECT_NEAR(rov.state().a_world_mps2.y(), 6.0, 1.0);
+    run(rov, {}, 5.0);
+    EXPECT_LT(rov.water_velocity().head<3>().norm(), 0.3 * std::exp(-4.0));
+}
+
 TEST(RovDynamics, BadConfigNamesTheField) {
     RovDynamicsConfig c;
     c.damping_time_constant_s[2] = 0.0;
@@ -116,6 +133,15 @@ TEST(RovDynamics, BadConfigNamesTheField) {
     c = {};
     c.thrust_time_constant_s = -1.0;
     EXPECT_THROW(RovDynamics(c, Eigen::Isometry3d::Identity(), 1), ConfigError);
+    c = {};
+    c.pushes.push_back({.start_s = 1.0, .duration_s = 0.0});
+    try {
+        RovDynamics rov(c, Eigen::Isometry3d::Identity(), 1);
+        FAIL() << "expected ConfigError";
+    } catch (const ConfigError& e) {
+        EXPECT_NE(std::string(e.what()).find("rov.pushes[0].duration_s"), std::string::npos)
+            << e.what();
+    }
 }
 
 }  // namespace

@@ -36,7 +36,8 @@
 /// centre along the vehicle's heading (horizontal) to the world; the stand-off is the
 /// perpendicular distance to the surface hit (range · |cos| of the ray to the hit's normal),
 /// the heading error the horizontal angle between the heading and the surface's inward normal.
-/// Ticks while the mission runs and the ray hits the hull within 3 m count.
+/// Ticks while the mission runs and the ray hits the hull within 3 m count; a ray that meets
+/// an appendage (anode, grating, bilge keel) is not a sample: the stand-off is the plating's.
 /// Errors name the file, line and key (ParseError) or the field (ConfigError).
 
 #include <Eigen/Geometry>

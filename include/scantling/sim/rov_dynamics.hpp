@@ -6,7 +6,8 @@
 /// Body frame: x forward (surge), y left (sway), z up (heave, positive upwards). Commands are
 /// water-relative body velocities. Per axis i (ν = water-relative velocity or yaw rate):
 ///   Ṫ = (T_cmd − T) / τ_T            first-order thruster response (τ_T = 0: immediate)
-///   ν̇ = T − ν / τ_i                   linear damping with time constant τ_i
+///   ν̇ = T − ν / τ_i + (Rᵀ a_push)_i   linear damping with time constant τ_i, and the
+///                                      external pushes (contacts, RovPush) over their windows
 /// with the feed-forward T_cmd = ν_cmd / τ_i, so ν settles on the command. For τ_T = 0 this
 /// is a first-order response with time constant τ_i; otherwise a two-pole one,
 ///   ν(t) = ν_cmd (1 − (τ_i e^(−t/τ_i) − τ_T e^(−t/τ_T)) / (τ_i − τ_T)) from rest.
@@ -24,11 +25,24 @@
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <string_view>
+#include <vector>
 
 #include <scantling/sim/disturbance.hpp>
 #include <scantling/sim/motion_state.hpp>
 
 namespace scantling::sim {
+
+/// An out-of-view contact (issue 14 item 6): an external acceleration on the vehicle over a
+/// short window (a bump into an appendage lasts tens of milliseconds), added to its
+/// water-relative velocity, so the vehicle is really pushed and its IMU sees the spike.
+struct RovPush {
+    double start_s = 0.0;                                               ///< simulated time, s, >= 0
+    double duration_s = 0.05;                                           ///< s, > 0
+    Eigen::Vector3d acceleration_world_mps2 = Eigen::Vector3d::Zero();  ///< finite
+};
+
+/// Pushes a scenario may list (a bound for hostile files).
+inline constexpr std::size_t kMaxRovPushes = 1000;
 
 struct RovDynamicsConfig {
     double dt_s = 0.01;  ///< fixed step (100 Hz)
@@ -39,6 +53,7 @@ struct RovDynamicsConfig {
     Eigen::Vector4d max_command{1.0, 0.5, 0.5, 1.0};
     /// Current, world frame, m/s (default: still water; slow variation when sigma > 0).
     GustConfig current{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), 60.0};
+    std::vector<RovPush> pushes;  ///< contacts, in any order (default: none)
 
     /// Throws ConfigError naming the field ("rov.damping_time_constant_s[2] = 0, ...").
     void validate(std::string_view prefix = "rov") const;
@@ -72,6 +87,8 @@ class RovDynamics {
 
   private:
     Eigen::Vector3d world_velocity() const;
+    /// Adds the pushes overlapping [stamp, stamp + dt_s) to the water-relative velocity.
+    void add_pushes(double dt_s);
 
     RovDynamicsConfig config_;
     GustProcess current_;

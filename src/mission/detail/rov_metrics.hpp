@@ -5,7 +5,9 @@
 #include <Eigen/Geometry>
 #include <cstddef>
 #include <optional>
+#include <span>
 #include <string>
+#include <vector>
 
 #include <scantling/localization/local_ekf.hpp>
 #include <scantling/mission/rov_mission.hpp>
@@ -24,13 +26,20 @@ struct StandOffSample {
 
 /// The true stand-off of a camera at `p_camera_world` heading along `yaw_rad` (see
 /// rov_mission.hpp); nothing when the horizontal ray meets no surface within
-/// kMaxStandOffRayM.
+/// kMaxStandOffRayM, or meets one of `skipped_tags` (the appendages: the stand-off is the
+/// plating's, and a ray grazing an anode's end would read a 90° heading error).
 std::optional<StandOffSample> true_stand_off(const sim::SceneView& scene,
-                                             const Eigen::Vector3d& p_camera_world, double yaw_rad);
+                                             const Eigen::Vector3d& p_camera_world, double yaw_rad,
+                                             std::span<const int> skipped_tags = {});
+
+/// The surface tags of the hull appendages present in `scene` (sim/world_hull_appendages.hpp).
+std::vector<int> appendage_tags(const sim::SceneView& scene);
 
 class RovMetrics {
   public:
-    RovMetrics(double wanted_stand_off_m, const Eigen::Isometry3d& T_body_camera);
+    /// `skipped_tags`: surfaces whose hits are not stand-off samples (appendage_tags).
+    RovMetrics(double wanted_stand_off_m, const Eigen::Isometry3d& T_body_camera,
+               std::vector<int> skipped_tags = {});
 
     /// One tick: `scene` at the tick, the stack's command and state.
     void add_tick(const sim::SceneView& scene, const sim::MotionState& truth,
@@ -46,6 +55,7 @@ class RovMetrics {
   private:
     double wanted_m_;
     Eigen::Isometry3d T_body_camera_;
+    std::vector<int> skipped_tags_;
     double stand_off_sum_m_ = 0.0, stand_off_max_m_ = 0.0;
     double heading_sum_rad_ = 0.0, heading_max_rad_ = 0.0;
     std::size_t stand_off_samples_ = 0;
