@@ -117,8 +117,11 @@ std::string rov_summary_text(const mission::RovMissionScenario& m,
     text += fmt::format("estimate_error: rms {:.3f} m, max {:.3f} m, yaw rms {:.2f} deg\n",
                         r.position_error_rms_m, r.position_error_max_m,
                         r.yaw_error_rms_rad * 180.0 / M_PI);
-    text += fmt::format("sonar: {} pings, {} hull lines, {} voxels (uncertainty {:.3f} m)\n",
-                        r.pings, r.hull_lines, r.sonar_voxels, r.sonar_voxel_uncertainty_mean_m);
+    text += fmt::format(
+        "sonar: {} pings, {} hull lines, {} voxels (uncertainty {:.3f} m), {:.1f} % of the "
+        "section\n",
+        r.pings, r.hull_lines, r.sonar_voxels, r.sonar_voxel_uncertainty_mean_m,
+        100.0 * r.sonar_coverage);
     text += fmt::format("lasers: {} of {} images, distance error {:.3f} m\n", r.laser_measurements,
                         r.images, r.laser_distance_error_mean_m);
     text += fmt::format(

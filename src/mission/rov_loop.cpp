@@ -10,6 +10,7 @@
 
 #include <scantling/core/error.hpp>
 #include <scantling/io/recording.hpp>
+#include <scantling/mapping/hull_coverage.hpp>
 #include <scantling/sim/recording_writer.hpp>
 #include <scantling/sim/scenario_runner.hpp>
 #include <scantling/sim/simulator.hpp>
@@ -112,6 +113,17 @@ std::string sonar_map_csv(const mapping::SonarInspectionMap& map) {
     return text;
 }
 
+/// The sonar map's share of the section (hull_coverage.hpp), its plane as planned.
+double sonar_coverage(const mapping::SonarInspectionMap& map,
+                      const perception::InspectionRectangle& section) {
+    const mapping::InspectedSurface surface{.origin_world_m = section.corner_world,
+                                            .axis_u_world = section.u_world,
+                                            .axis_v_world = section.v_world,
+                                            .extent_u_m = section.width_m,
+                                            .extent_v_m = section.height_m};
+    return mapping::coverage_of(map, surface).covered_fraction;
+}
+
 /// The stack's counters and maps into the result.
 void add_stack_figures(const RovStack& stack, RovMissionResult& r) {
     const RovStack::Counters& c = stack.counters();
@@ -130,6 +142,7 @@ void add_stack_figures(const RovStack& stack, RovMissionResult& r) {
     double sum = 0.0;
     for (const mapping::SonarVoxel& v : voxels) sum += v.uncertainty_m;
     r.sonar_voxel_uncertainty_mean_m = voxels.empty() ? 0.0 : sum / voxels.size();
+    r.sonar_coverage = sonar_coverage(stack.sonar_map(), stack.inspected());
 }
 
 }  // namespace

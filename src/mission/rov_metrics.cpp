@@ -150,7 +150,8 @@ std::string rov_summary_json(const RovMissionScenario& scenario, const RovMissio
                              {"holes_found", r.holes_found},
                              {"reinspection_rounds", r.reinspection_rounds},
                              {"sonar_voxels", r.sonar_voxels},
-                             {"sonar_voxel_uncertainty_mean_m", r.sonar_voxel_uncertainty_mean_m}};
+                             {"sonar_voxel_uncertainty_mean_m", r.sonar_voxel_uncertainty_mean_m},
+                             {"sonar_coverage", r.sonar_coverage}};
     if (r.coverage_survey) j["camera_coverage_survey"] = coverage_json(*r.coverage_survey);
     if (r.coverage) j["camera_coverage"] = coverage_json(*r.coverage);
     const LoopTiming& t = r.timing;

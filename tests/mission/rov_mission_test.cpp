@@ -151,6 +151,22 @@ TEST(RovHullSurvey, AnOutOfViewContactMakesTheVehicleBackOffAndReportIt) {
     EXPECT_LT(r.stand_off_error_mean_m, 0.10);
 }
 
+TEST(RovHullSurvey, TheShippedSurveysParseAndAreToldFromTheDronesMissions) {
+    const std::string dir = std::string(SCANTLING_SOURCE_DIR) + "/scenarios/missions/";
+    for (const char* name : {"hull_survey_horizontal", "hull_survey_vertical"}) {
+        const std::string path = dir + "rov/" + name + ".yaml";
+        EXPECT_TRUE(is_rov_mission_file(path)) << path;
+        const RovMissionScenario m = load_rov_mission_scenario(path);
+        EXPECT_EQ(m.name, name);
+        EXPECT_DOUBLE_EQ(m.plan.length_m, 30.0);
+        EXPECT_DOUBLE_EQ(m.flown_plan().length_m, 30.2);  // the margin on both ends
+        EXPECT_TRUE(m.coverage.has_value());
+        EXPECT_DOUBLE_EQ(m.stack.surface_z_world_m, 6.9);  // from the pressure sensor
+    }
+    EXPECT_TRUE(is_rov_mission_file(dir + "rov/dtc_hull_survey.yaml"));
+    EXPECT_FALSE(is_rov_mission_file(dir + "hull_sweep_closed_loop.yaml"));
+}
+
 TEST(RovHullSurvey, AnImpossiblePlanIsRefusedNamingTheField) {
     auto with = [](const std::string& from, const std::string& to) {
         std::string yaml = section_yaml();

@@ -136,6 +136,10 @@ struct RovMissionResult {
     std::size_t reinspection_rounds = 0;
     std::size_t sonar_voxels = 0;  ///< existing voxels of the sonar inspection map
     double sonar_voxel_uncertainty_mean_m = 0.0;
+    /// The section's share covered by the sonar map's voxels (mapping::coverage_of), a figure
+    /// only: the re-inspection follows the camera's believed coverage, since a horizontal
+    /// slice's 20° fan covers a band a third of the camera footprint's height.
+    double sonar_coverage = 0.0;
     /// The true camera coverage (coverage: figure), after the survey and at the end.
     std::optional<perception::CoverageResult> coverage_survey;
     std::optional<perception::CoverageResult> coverage;

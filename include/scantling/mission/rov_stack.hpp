@@ -166,6 +166,7 @@ class RovStack {
     std::size_t next_waypoint() const;
     const mapping::SonarInspectionMap& sonar_map() const { return sonar_map_; }
     const perception::CameraCoverage& believed_coverage() const { return coverage_; }
+    const perception::InspectionRectangle& inspected() const { return inspected_; }
     const safety::ContactDetector& contacts() const { return contact_; }
     const localization::LocalEkf& local_ekf() const { return local_; }
     const RovStackConfig& config() const { return config_; }
