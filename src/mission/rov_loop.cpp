@@ -145,6 +145,49 @@ void add_stack_figures(const RovStack& stack, RovMissionResult& r) {
     r.sonar_coverage = sonar_coverage(stack.sonar_map(), stack.inspected());
 }
 
+/// One tick's readings to the recording and the stack (motion and ranging first, then the
+/// pings and images, which need the estimate at their stamp), with the fault windows logged.
+void deliver_tick(RovLoop& loop, sim::SimStep& step, FaultInjector& faults,
+                  sim::RecordingWriter& writer, MissionFiles& files, double t_s) {
+    {
+        StageClock clock(loop.timing.record_s);
+        writer.add_ground_truth(t_s, step.truth.T_world_body);
+    }
+    std::stable_partition(step.readings.begin(), step.readings.end(),
+                          [](const sim::SensorReading& r) { return !is_perception(r); });
+    detail::log_faults(files, faults, t_s);
+    for (const sim::SensorReading& reading : step.readings) deliver(loop, reading, faults, writer);
+}
+
+/// The survey's own figures, kept when the slices are done (before any re-inspection).
+struct SurveyFigures {
+    std::optional<perception::CoverageResult> coverage;
+    double believed = 0.0;
+    bool taken = false;
+};
+
+void take_survey_figures(const RovStack& stack, const std::optional<detail::CoverageMonitor>& truth,
+                         SurveyFigures& survey) {
+    if (survey.taken || stack.phase() == SurveyPhase::kSurvey) return;
+    if (truth) survey.coverage = truth->result();
+    survey.believed = stack.believed_coverage().result().covered_fraction;
+    survey.taken = true;
+}
+
+void write_recording(sim::RecordingWriter& writer, const RovMissionScenario& scenario,
+                     const sim::Simulator& sim, const RovStack& stack, const MissionFiles& files,
+                     const planning::WaypointPath& survey, RovMissionResult& result) {
+    writer.finish(
+        detail::recording_summary(scenario.name, scenario.description, scenario.simulation, sim));
+    detail::write_mission_files(writer, files, survey, detail::rov_summary_json(scenario, result));
+    detail::write_text((std::filesystem::path(writer.staging_directory()) /
+                        io::recording_layout::kMissionDir / io::recording_layout::kMissionSonarMap)
+                           .string(),
+                       sonar_map_csv(stack.sonar_map()));
+    writer.write_timing(result.wall_time_s, result.real_time_factor);
+    writer.commit();
+}
+
 }  // namespace
 
 RovMissionResult run_rov_mission(const RovMissionScenario& scenario, const std::string& directory,
@@ -158,12 +201,11 @@ RovMissionResult run_rov_mission(const RovMissionScenario& scenario, const std::
         writer.write_world(sim.world(), {.map_spacing_m = simulation.export_world.map_spacing_m,
                                          .seed = Rng(simulation.seed).split(100).next_u64()});
     }
-    const planning::HullSurveyPlan plan = planning::plan_hull_survey(scenario.flown_plan());
-    const planning::WaypointPath survey =
-        planning::hull_survey_in_world(plan, scenario.T_world_flown_hull());
-    CoverageSpec section_spec;
-    section_spec.rectangle = scenario.section();
-    RovStack stack(scenario.stack, survey, section_spec.inspection_rectangle(),
+    const planning::WaypointPath survey = planning::hull_survey_in_world(
+        planning::plan_hull_survey(scenario.flown_plan()), scenario.T_world_flown_hull());
+    CoverageSpec section;
+    section.rectangle = scenario.section();
+    RovStack stack(scenario.stack, survey, section.inspection_rectangle(),
                    scenario.T_world_body_start(), 0.0);
     detail::RovMetrics metrics(scenario.plan.stand_off_m, scenario.stack.T_body_camera,
                                detail::appendage_tags(sim.scene()));
@@ -171,10 +213,9 @@ RovMissionResult run_rov_mission(const RovMissionScenario& scenario, const std::
     MissionFiles files;
     LoopTiming timing;
     RovLoop loop{sim, stack, metrics, timing};
-    std::optional<detail::CoverageMonitor> coverage;
-    if (scenario.coverage) coverage.emplace(*scenario.coverage, sim.scene());
-    std::optional<perception::CoverageResult> coverage_survey;
-    double believed_survey = 0.0;
+    std::optional<detail::CoverageMonitor> truth_coverage;
+    if (scenario.coverage) truth_coverage.emplace(*scenario.coverage, sim.scene());
+    SurveyFigures survey_figures;
     FaultInjector faults(scenario.faults, detail::sensor_types(simulation));
     std::optional<double> ended_at_s;
     double next_progress_s = 0.0;
@@ -187,37 +228,23 @@ RovMissionResult run_rov_mission(const RovMissionScenario& scenario, const std::
                             sim.now_s(), directory));
         }
         const double t_s = sim.now_s();
-        {
-            StageClock clock(timing.record_s);
-            writer.add_ground_truth(t_s, step.truth.T_world_body);
-        }
-        std::stable_partition(step.readings.begin(), step.readings.end(),
-                              [](const sim::SensorReading& r) { return !is_perception(r); });
-        detail::log_faults(files, faults, t_s);
-        for (const sim::SensorReading& reading : step.readings) {
-            deliver(loop, reading, faults, writer);
-        }
+        deliver_tick(loop, step, faults, writer, files, t_s);
         std::vector<control::OperatorCommand> commands = script.due(t_s);
         if (sim.tick() == 0)
             commands.insert(commands.begin(), {control::OperatorCommandType::kStart});
         detail::log_operator(files, commands, t_s);
-        const SurveyPhase phase_before = stack.phase();
         const RovStackCommand command = [&] {
             StageClock clock(timing.command_s);
             return stack.command(t_s, commands);
         }();
-        if (phase_before == SurveyPhase::kSurvey && stack.phase() != SurveyPhase::kSurvey) {
-            // The survey's own figures, before any re-inspection.
-            if (coverage) coverage_survey = coverage->result();
-            believed_survey = stack.believed_coverage().result().covered_fraction;
-        }
+        take_survey_figures(stack, truth_coverage, survey_figures);
         {
             StageClock clock(timing.log_s);
             log_command(files, command, t_s);
             files.estimates.push_back(estimate_record(stack, t_s));
             metrics.add_tick(sim.scene(), step.truth, stack.estimate(), command, t_s);
-            if (coverage && command.state == control::MissionState::kRunning) {
-                coverage->add(t_s, step.truth.T_world_body);
+            if (truth_coverage && command.state == control::MissionState::kRunning) {
+                truth_coverage->add(t_s, step.truth.T_world_body);
             }
         }
         if (options.progress && t_s >= next_progress_s) {
@@ -241,26 +268,19 @@ RovMissionResult run_rov_mission(const RovMissionScenario& scenario, const std::
     add_stack_figures(stack, result);
     result.waypoints_survey = survey.waypoints.size();
     result.believed_coverage_survey =
-        stack.phase() == SurveyPhase::kSurvey ? result.believed_coverage_final : believed_survey;
-    if (coverage) {
-        result.coverage = coverage->result();
-        result.coverage_survey = coverage_survey ? coverage_survey : result.coverage;
+        survey_figures.taken ? survey_figures.believed : result.believed_coverage_final;
+    if (truth_coverage) {
+        result.coverage = truth_coverage->result();
+        result.coverage_survey = survey_figures.taken ? survey_figures.coverage : result.coverage;
     }
     result.timing = timing;
     result.directory = directory;
     result.sim_time_s = sim.now_s();
     result.events = files.num_events;
-    writer.finish(detail::recording_summary(scenario.name, scenario.description, simulation, sim));
     result.wall_time_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
     result.real_time_factor = result.sim_time_s / std::max(result.wall_time_s, 1e-9);
-    detail::write_mission_files(writer, files, survey, detail::rov_summary_json(scenario, result));
-    detail::write_text((std::filesystem::path(writer.staging_directory()) /
-                        io::recording_layout::kMissionDir / io::recording_layout::kMissionSonarMap)
-                           .string(),
-                       sonar_map_csv(stack.sonar_map()));
-    writer.write_timing(result.wall_time_s, result.real_time_factor);
-    writer.commit();
+    write_recording(writer, scenario, sim, stack, files, survey, result);
     return result;
 }
 
