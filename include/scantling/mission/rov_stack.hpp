@@ -69,10 +69,12 @@ struct RovStackConfig {
     localization::LocalEkfConfig local_ekf{};  ///< IMU and DVL mounts (set from the sensors)
     /// DVL velocity 1σ per axis, m/s, > 0: a Water Linked A50 class DVL (≈ 1 cm/s at 1 m/s).
     double dvl_sigma_mps = 0.01;
-    double depth_sigma_m = 0.02;  ///< pressure depth 1σ, m, > 0 (≈ 2 kPa·10⁻² … 0.1 % FS)
+    /// Pressure depth 1σ, m, > 0: a 0.1 %-of-full-scale sensor over 20 m of water.
+    double depth_sigma_m = 0.02;
     double surface_z_world_m = 0.0;  ///< world z of the water surface (the pressure's datum)
     Eigen::Isometry3d T_body_sonar = Eigen::Isometry3d::Identity();  ///< sonar mount
-    /// 1σ of a sonar feature along its beam, m, > 0 (half a 4 cm range bin, plus the edge).
+    /// 1σ of a sonar feature along its beam, m, > 0: a range bin of a 256-bin ping at a 5–10 m
+    /// range setting (2–4 cm), the edge's placement within it included.
     double sonar_range_sigma_m = 0.03;
     /// Heading aid, rad, >= 0 (0: off). IMU and DVL leave yaw unobserved (a gyro bias of
     /// 0.01°/s turned the estimate by 10° over a 20-minute survey, and the DVL's velocity with
@@ -88,10 +90,10 @@ struct RovStackConfig {
     /// The camera (optical frame: z forward, x right, y down) and its believed coverage.
     PinholeIntrinsics camera{};
     Eigen::Isometry3d T_body_camera = Eigen::Isometry3d::Identity();
-    /// Within 2.0 m and 60° of incidence a 1080p camera of 77° sees the hull at 2 mm per pixel
-    /// or finer (1000 · 2.0 · cos 30° / 1207 px ≈ 1.4 at the footprint's edge at 1.3 m): the
-    /// wanted resolution of the survey's figure. The stack's own camera model may be coarser
-    /// (a simulated 320-pixel image), so the range stands for the resolution here.
+    /// A 1080p camera of 77° (f = 1207 px) sees 1000 · r / (f cos i) mm per pixel: 2 mm at
+    /// r = 2.0 m square-on, and 1.8 mm at the footprint's edge from a 1.3 m stand-off (r = 1.66
+    /// m, i = 38°), the wanted resolution of the survey's figure. The stack's own camera model
+    /// may be coarser (a simulated 320-pixel image), so the range stands for the resolution.
     perception::CameraCoverageConfig coverage{.cell_size_m = 0.1, .max_range_m = 2.0};
     perception::LaserPointerConfig lasers{};
     bool measure_lasers = true;  ///< run the laser-pointer triangulation on every image
