@@ -13,6 +13,9 @@ packages=(
   libassimp-dev libembree-dev libceres-dev liboctomap-dev zlib1g-dev libpng-dev
   # Canny edges in the sonar image (perception; cmake/FindOpenCVImgproc.cmake)
   libopencv-core-dev libopencv-imgproc-dev
+  # CGAL's surface-mesh shortest path for the crawler's paths on meshes (planning/mesh_path.cpp;
+  # header-only, pulls the GMP/MPFR/Boost headers)
+  libcgal-dev
   # make fuzz: clang with libFuzzer and the ASan/UBSan runtimes (libclang_rt.fuzzer-x86_64.a)
   clang-14 libclang-rt-14-dev
   # plots of the experiments (scripts/d52-experiments.sh; docs/results.md)

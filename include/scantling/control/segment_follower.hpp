@@ -33,14 +33,15 @@
 #include <string_view>
 #include <vector>
 
+#include <scantling/planning/mesh_path.hpp>
+
 namespace scantling::control {
 
-/// One path segment, lying in one facet of the mesh. World frame, metres.
-struct PathSegment {
-    Eigen::Vector3d begin_world_m = Eigen::Vector3d::Zero();  ///< B_i
-    Eigen::Vector3d end_world_m = Eigen::Vector3d::UnitX();   ///< E_i, ≥ 1e-6 m from B_i
-    Eigen::Vector3d normal_world = Eigen::Vector3d::UnitZ();  ///< the facet normal, not ∥ E − B
-};
+/// One path segment, lying in one facet of the mesh. World frame, metres: B_i = begin_world_m,
+/// E_i = end_world_m (≥ 1e-6 m from B_i), normal_world the facet normal (not ∥ E − B); `face`
+/// is not used by the follower. The planner's type, so that shortest_path_on_mesh()'s segments
+/// are followed as they are.
+using PathSegment = planning::MeshPathSegment;
 
 /// Defaults for a magnetic crawler at 0.1 m/s (SPEC §6 gives v_ref's order but no gains). The
 /// gains place both poles of the linearised loop (see @file) at −ω_n (critically damped, ζ = 1)
