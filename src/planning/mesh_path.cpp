@@ -44,8 +44,8 @@ using AabbTraits = CGAL::AABB_traits<Kernel, AabbPrimitive>;
 using AabbTree = CGAL::AABB_tree<AabbTraits>;
 
 constexpr double kMinFacetAreaM2 = 1e-12;  // 1 µm²: a facet without a usable normal
-constexpr double kMinPieceM = 1e-6;        // shorter pieces are rounding (and the follower's minimum)
-constexpr double kOnFacetM = 1e-9;         // a point this close to a facet lies in it
+constexpr double kMinPieceM = 1e-6;  // shorter pieces are rounding (and the follower's minimum)
+constexpr double kOnFacetM = 1e-9;   // a point this close to a facet lies in it
 
 Eigen::Vector3d to_eigen(const Point3& p) { return {p.x(), p.y(), p.z()}; }
 

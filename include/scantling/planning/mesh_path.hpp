@@ -9,12 +9,12 @@
 ///
 /// Facets. Each segment lies in one facet of the input mesh, in order from start to goal, the end
 /// of one the begin of the next; pieces shorter than 1e-6 m are dropped (the next segment then
-/// begins where the previous one ended), the shortest control::SegmentFollower accepts. A piece that runs
-/// exactly along an edge (or between two vertices of one edge) lies in both facets of that edge;
-/// it is given the one with the smaller index (deterministic, and the same for both directions).
-/// A start and goal that snap to the same point give an empty path. CGAL 5.5 may report an edge
-/// crossing with its parameter off the edge where the path runs along an edge; it is clamped
-/// onto the edge.
+/// begins where the previous one ended), the shortest control::SegmentFollower accepts. A piece
+/// that runs exactly along an edge (or between two vertices of one edge) lies in both facets of
+/// that edge; it is given the one with the smaller index (deterministic, and the same for both
+/// directions). A start and goal that snap to the same point give an empty path. CGAL 5.5 may
+/// report an edge crossing with its parameter off the edge where the path runs along an edge; it is
+/// clamped onto the edge.
 ///
 /// Thread-safety: pure function. Cost: O(T log T) to build the geodesic structure and the AABB
 /// tree for T triangles (worst case O(T²) for the exact algorithm), then O(k) for a path crossing
