@@ -71,18 +71,6 @@ std::string event_json(const control::MissionEvent& e) {
     return j.empty() ? "{}" : j.dump();
 }
 
-io::EstimateRecord estimate_record(const DroneStack& stack, double t_s) {
-    const localization::DroneState s = stack.estimate();
-    const auto& P = s.covariance;
-    return {.stamp_s = t_s,
-            .T_world_body = s.T_odom_body,
-            .v_world_mps = s.v_odom_mps,
-            .position_sigma_m =
-                Eigen::Vector3d(std::sqrt(P(0, 0)), std::sqrt(P(1, 1)), std::sqrt(P(2, 2))),
-            .yaw_sigma_rad = std::sqrt(P(5, 5)),
-            .valid = stack.estimate_valid()};
-}
-
 void log_command(MissionFiles& files, const StackCommand& c, double t_s) {
     files.commands.push_back({.stamp_s = t_s,
                               .v_world_mps = c.v_world_mps,
@@ -185,8 +173,10 @@ MissionResult run_mission(const MissionScenario& scenario, const std::string& di
         {
             StageClock clock(timing.log_s);
             log_command(files, command, t_s);
-            files.estimates.push_back(estimate_record(stack, t_s));
-            metrics.add_tick(step.truth, stack.estimate(), command, t_s);
+            const localization::DroneState estimate = stack.estimate();
+            files.estimates.push_back(
+                detail::estimate_record(estimate, t_s, stack.estimate_valid()));
+            metrics.add_tick(step.truth, estimate, command, t_s);
             if (coverage) coverage->add(t_s, step.truth.T_world_body);
         }
         if (options.progress && t_s >= next_progress_s) {

@@ -13,8 +13,29 @@
 #include <scantling/sim/scenario_schema.hpp>
 
 #include "detail/config_nodes.hpp"
+#include "detail/mission_schemas.hpp"
 
 namespace scantling::mission {
+
+namespace detail {
+
+const io::ConfigSchema<perception::CameraCoverageConfig>& camera_coverage_config_schema() {
+    using S = perception::CameraCoverageConfig;
+    static const io::ConfigSchema<S> schema = [] {
+        io::ConfigSchema<S> s;
+        s.field("cell_size_m", &S::cell_size_m, "grid cell, m", io::kPositive)
+            .field("max_range_m", &S::max_range_m, "farther cells are not seen, m", io::kPositive)
+            .field("max_incidence_deg", &S::max_incidence_deg, "steeper views do not count, deg")
+            .field("max_mm_per_px", &S::max_mm_per_px, "coarser views do not count (0: any)",
+                   io::kNonNegative)
+            .field("min_views", &S::min_views, "views a cell needs");
+        return s;
+    }();
+    return schema;
+}
+
+}  // namespace detail
+
 namespace {
 
 using detail::without;
@@ -54,21 +75,6 @@ const io::ConfigSchema<CameraSpec>& camera_schema() {
     return schema;
 }
 
-const io::ConfigSchema<perception::CameraCoverageConfig>& coverage_config_schema() {
-    using S = perception::CameraCoverageConfig;
-    static const io::ConfigSchema<S> schema = [] {
-        io::ConfigSchema<S> s;
-        s.field("cell_size_m", &S::cell_size_m, "grid cell, m", io::kPositive)
-            .field("max_range_m", &S::max_range_m, "farther cells are not seen, m", io::kPositive)
-            .field("max_incidence_deg", &S::max_incidence_deg, "steeper views do not count, deg")
-            .field("max_mm_per_px", &S::max_mm_per_px, "coarser views do not count (0: any)",
-                   io::kNonNegative)
-            .field("min_views", &S::min_views, "views a cell needs");
-        return s;
-    }();
-    return schema;
-}
-
 }  // namespace
 
 CoverageSpec coverage_from_yaml(const io::ConfigNode& node,
@@ -95,7 +101,7 @@ CoverageSpec coverage_from_yaml(const io::ConfigNode& node,
     coverage_schema().apply(rest, spec);
     io::ConfigNode grid =
         without(node, {"rectangle", "camera", "mount", "rate_hz", "occlusion_margin_m"});
-    coverage_config_schema().apply(grid, spec.config);
+    detail::camera_coverage_config_schema().apply(grid, spec.config);
     return spec;
 }
 

@@ -9,6 +9,9 @@
 
 #include <scantling/core/config_checks.hpp>
 #include <scantling/core/error.hpp>
+#include <scantling/sim/scenario_schema.hpp>
+
+#include "detail/mission_schemas.hpp"
 
 namespace scantling::mission {
 namespace {
@@ -101,5 +104,25 @@ sim::SensorReading poisoned(sim::SensorReading reading) {
     }
     return reading;
 }
+
+namespace detail {
+
+const io::ConfigSchema<SensorFault>& fault_schema() {
+    using S = SensorFault;
+    static const io::ConfigSchema<S> schema = [] {
+        io::ConfigSchema<S> s;
+        s.enum_field("sensor", &S::sensor, sim::detail::sensor_type_choices(),
+                     "every simulated sensor of this type")
+            .enum_field("kind", &S::kind,
+                        {{"dropout", FaultKind::kDropout}, {"nan", FaultKind::kNan}},
+                        "no readings, or readings of NaNs")
+            .field("start_s", &S::start_s, "simulated time, s", io::Range{.min = 0.0})
+            .field("duration_s", &S::duration_s, "s", io::kPositive);
+        return s;
+    }();
+    return schema;
+}
+
+}  // namespace detail
 
 }  // namespace scantling::mission

@@ -18,6 +18,7 @@
 #include <scantling/sim/scenario_schema.hpp>
 
 #include "detail/config_nodes.hpp"
+#include "detail/mission_schemas.hpp"
 
 namespace scantling::mission {
 namespace {
@@ -105,22 +106,6 @@ const io::ConfigSchema<RecordedPointSpec>& recorded_point_schema() {
     return schema;
 }
 
-const io::ConfigSchema<SensorFault>& fault_schema() {
-    using S = SensorFault;
-    static const io::ConfigSchema<S> schema = [] {
-        io::ConfigSchema<S> s;
-        s.enum_field("sensor", &S::sensor, sim::detail::sensor_type_choices(),
-                     "every simulated sensor of this type")
-            .enum_field("kind", &S::kind,
-                        {{"dropout", FaultKind::kDropout}, {"nan", FaultKind::kNan}},
-                        "no readings, or readings of NaNs")
-            .field("start_s", &S::start_s, "simulated time, s", io::Range{.min = 0.0})
-            .field("duration_s", &S::duration_s, "s", io::kPositive);
-        return s;
-    }();
-    return schema;
-}
-
 const io::ConfigSchema<MissionDocument>& document_schema() {
     using S = MissionDocument;
     static const io::ConfigSchema<S> schema = [] {
@@ -132,7 +117,7 @@ const io::ConfigSchema<MissionDocument>& document_schema() {
             .field("linger_s", &S::linger_s, "simulated after the end, s", io::Range{.min = 0.0})
             .section("stack", &S::stack, stack_schema())
             .list("recorded_points", &S::recorded_points, recorded_point_schema())
-            .list("faults", &S::faults, fault_schema());
+            .list("faults", &S::faults, detail::fault_schema());
         return s;
     }();
     return schema;

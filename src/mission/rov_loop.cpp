@@ -76,18 +76,6 @@ void deliver(RovLoop& loop, const sim::SensorReading& reading, const FaultInject
     feed(loop, reading);
 }
 
-io::EstimateRecord estimate_record(const RovStack& stack, double t_s) {
-    const localization::DroneState s = stack.estimate();
-    const auto& P = s.covariance;
-    return {.stamp_s = t_s,
-            .T_world_body = s.T_odom_body,
-            .v_world_mps = s.v_odom_mps,
-            .position_sigma_m =
-                Eigen::Vector3d(std::sqrt(P(0, 0)), std::sqrt(P(1, 1)), std::sqrt(P(2, 2))),
-            .yaw_sigma_rad = std::sqrt(P(5, 5)),
-            .valid = stack.estimate_valid(t_s)};
-}
-
 void log_command(MissionFiles& files, const RovStackCommand& c, double t_s) {
     files.commands.push_back({.stamp_s = t_s,
                               .v_world_mps = c.v_world_mps,
@@ -241,8 +229,10 @@ RovMissionResult run_rov_mission(const RovMissionScenario& scenario, const std::
         {
             StageClock clock(timing.log_s);
             log_command(files, command, t_s);
-            files.estimates.push_back(estimate_record(stack, t_s));
-            metrics.add_tick(sim.scene(), step.truth, stack.estimate(), command, t_s);
+            const localization::DroneState estimate = stack.estimate();
+            files.estimates.push_back(
+                detail::estimate_record(estimate, t_s, stack.estimate_valid(t_s)));
+            metrics.add_tick(sim.scene(), step.truth, estimate, command, t_s);
             if (truth_coverage && command.state == control::MissionState::kRunning) {
                 truth_coverage->add(t_s, step.truth.T_world_body);
             }

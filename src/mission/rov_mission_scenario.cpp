@@ -17,6 +17,7 @@
 #include <scantling/sim/sensor_configs.hpp>
 
 #include "detail/config_nodes.hpp"
+#include "detail/mission_schemas.hpp"
 
 namespace scantling::mission {
 namespace {
@@ -90,21 +91,6 @@ const io::ConfigSchema<safety::ContactDetectorConfig>& contact_schema() {
     return schema;
 }
 
-const io::ConfigSchema<perception::CameraCoverageConfig>& believed_coverage_schema() {
-    using S = perception::CameraCoverageConfig;
-    static const io::ConfigSchema<S> schema = [] {
-        io::ConfigSchema<S> s;
-        s.field("cell_size_m", &S::cell_size_m, "grid cell, m", io::kPositive)
-            .field("max_range_m", &S::max_range_m, "farther cells are not seen, m", io::kPositive)
-            .field("max_incidence_deg", &S::max_incidence_deg, "steeper views do not count, deg")
-            .field("max_mm_per_px", &S::max_mm_per_px, "coarser views do not count (0: any)",
-                   io::kNonNegative)
-            .field("min_views", &S::min_views, "views a cell needs");
-        return s;
-    }();
-    return schema;
-}
-
 const io::ConfigSchema<RovStackConfig>& stack_schema() {
     using S = RovStackConfig;
     static const io::ConfigSchema<S> schema = [] {
@@ -118,7 +104,7 @@ const io::ConfigSchema<RovStackConfig>& stack_schema() {
             .section("guidance", &S::guidance, guidance_schema())
             .section("adapter", &S::adapter, adapter_schema())
             .section("contact", &S::contact, contact_schema())
-            .section("coverage", &S::coverage, believed_coverage_schema(),
+            .section("coverage", &S::coverage, detail::camera_coverage_config_schema(),
                      "the coverage the robot believes, which decides the re-inspection")
             .field("measure_lasers", &S::measure_lasers, "laser-pointer triangulation per image")
             .field("min_hole_area_m2", &S::min_hole_area_m2, "smaller holes are left, m²",
@@ -133,22 +119,6 @@ const io::ConfigSchema<RovStackConfig>& stack_schema() {
     return schema;
 }
 
-const io::ConfigSchema<SensorFault>& fault_schema() {
-    using S = SensorFault;
-    static const io::ConfigSchema<S> schema = [] {
-        io::ConfigSchema<S> s;
-        s.enum_field("sensor", &S::sensor, sim::detail::sensor_type_choices(),
-                     "every simulated sensor of this type")
-            .enum_field("kind", &S::kind,
-                        {{"dropout", FaultKind::kDropout}, {"nan", FaultKind::kNan}},
-                        "no readings, or readings of NaNs")
-            .field("start_s", &S::start_s, "simulated time, s", io::Range{.min = 0.0})
-            .field("duration_s", &S::duration_s, "s", io::kPositive);
-        return s;
-    }();
-    return schema;
-}
-
 const io::ConfigSchema<RovDocument>& document_schema() {
     using S = RovDocument;
     static const io::ConfigSchema<S> schema = [] {
@@ -158,7 +128,7 @@ const io::ConfigSchema<RovDocument>& document_schema() {
             .section("start", &S::start, sim::detail::pose_spec_schema(), "start pose, world")
             .field("linger_s", &S::linger_s, "simulated after the end, s", io::kNonNegative)
             .section("stack", &S::stack, stack_schema())
-            .list("faults", &S::faults, fault_schema());
+            .list("faults", &S::faults, detail::fault_schema());
         return s;
     }();
     return schema;

@@ -205,7 +205,8 @@ std::optional<perception::SonarHullLine> RovStack::add_sonar(const io::SonarPing
     std::erase(rejecting_, "sonar");
     ++counters_.pings;
     perception::SonarHullLine line = perception::detect_hull_line(ping, config_.hull_line);
-    add_features(line, ping.stamp_s);
+    const Eigen::Isometry3d T_world_sonar = T_world_body() * config_.T_body_sonar;
+    add_features(line, T_world_sonar, ping.stamp_s);
     if (!line.ok()) {
         if (!hull_line_lost_) {
             event(ping.stamp_s, "hull_line_lost",
@@ -218,9 +219,10 @@ std::optional<perception::SonarHullLine> RovStack::add_sonar(const io::SonarPing
     if (hull_line_lost_) event(ping.stamp_s, "hull_line_restored");
     hull_line_lost_ = false;
     ++counters_.hull_lines;
-    const auto observation = horizontal_observation(line, T_world_body() * config_.T_body_sonar);
+    const auto observation = horizontal_observation(line, T_world_sonar);
     if (observation) aid_heading(*observation, ping.stamp_s);
     if (observation && state_ == control::MissionState::kRunning) {
+        // After the heading aid: the pose it has just corrected.
         const Eigen::Vector3d p_camera = T_world_body() * config_.T_body_camera.translation();
         // From the current leg's start on: the target runs along the leg, so both of its ends
         // must lie on the adapted line (both are on one line parallel to the planned hull, so
@@ -249,8 +251,8 @@ void RovStack::aid_heading(const planning::HullLineObservation& observation, dou
                        .sigma_rad = config_.hull_heading_sigma_rad});
 }
 
-void RovStack::add_features(const perception::SonarHullLine& line, double stamp_s) {
-    const Eigen::Isometry3d T_world_sonar = T_world_body() * config_.T_body_sonar;
+void RovStack::add_features(const perception::SonarHullLine& line,
+                            const Eigen::Isometry3d& T_world_sonar, double stamp_s) {
     const Eigen::Matrix3d P = estimate().covariance.topLeftCorner<3, 3>();
     const double pose_variance = P.trace() / 3.0;
     std::vector<Eigen::Vector3d> points;

@@ -195,7 +195,8 @@ class RovStack {
     void set_state(control::MissionState to, double t_s, std::string_view reason);
     void watch_dvl(double t_s);
     void finish_path(double t_s);
-    void add_features(const perception::SonarHullLine& line, double stamp_s);
+    void add_features(const perception::SonarHullLine& line, const Eigen::Isometry3d& T_world_sonar,
+                      double stamp_s);
     void aid_heading(const planning::HullLineObservation& observation, double stamp_s);
     Eigen::Isometry3d T_world_body() const;
     RovStackCommand guide(double t_s, double dt_s);

@@ -1,6 +1,7 @@
 // What the vehicles' closed loops share (loop_support.hpp).
 #include "loop_support.hpp"
 
+#include <cmath>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
@@ -24,6 +25,18 @@ std::vector<io::PathPointRecord> path_records(const planning::WaypointPath& path
 
 void write_text(const std::string& path, const std::string& text) {
     io::write_file_atomically(path, [&](std::ostream& out) { out << text; });
+}
+
+io::EstimateRecord estimate_record(const localization::DroneState& estimate, double t_s,
+                                   bool valid) {
+    const auto& P = estimate.covariance;
+    return {.stamp_s = t_s,
+            .T_world_body = estimate.T_odom_body,
+            .v_world_mps = estimate.v_odom_mps,
+            .position_sigma_m =
+                Eigen::Vector3d(std::sqrt(P(0, 0)), std::sqrt(P(1, 1)), std::sqrt(P(2, 2))),
+            .yaw_sigma_rad = std::sqrt(P(5, 5)),
+            .valid = valid};
 }
 
 void log_operator(MissionFiles& files, std::span<const control::OperatorCommand> commands,

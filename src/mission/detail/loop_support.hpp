@@ -10,6 +10,7 @@
 
 #include <scantling/control/mission_manager.hpp>
 #include <scantling/io/mission_log.hpp>
+#include <scantling/localization/local_ekf.hpp>
 #include <scantling/mission/fault_injection.hpp>
 #include <scantling/planning/waypoints.hpp>
 #include <scantling/sim/recording_writer.hpp>
@@ -49,6 +50,10 @@ struct MissionFiles {
 };
 
 void write_text(const std::string& path, const std::string& text);
+
+/// One tick's line of mission/estimates.csv: the stack's world estimate and its 1σ.
+io::EstimateRecord estimate_record(const localization::DroneState& estimate, double t_s,
+                                   bool valid);
 
 void log_operator(MissionFiles& files, std::span<const control::OperatorCommand> commands,
                   double t_s);
