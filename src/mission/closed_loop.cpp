@@ -146,11 +146,7 @@ MissionResult run_mission(const MissionScenario& scenario, const std::string& di
 
     sim::SimStep step = sim.start();
     while (true) {
-        if (options.stop_requested && options.stop_requested()) {
-            throw sim::ScenarioInterrupted(
-                fmt::format("interrupted at simulated t = {:.3f} s; nothing was written to {}",
-                            sim.now_s(), directory));
-        }
+        detail::throw_if_stop_requested(options, sim, directory);
         const double t_s = sim.now_s();
         {
             StageClock clock(timing.record_s);
@@ -162,9 +158,7 @@ MissionResult run_mission(const MissionScenario& scenario, const std::string& di
         for (const sim::SensorReading& reading : step.readings) {
             deliver(reading, faults, writer, stack, metrics, timing);
         }
-        std::vector<control::OperatorCommand> commands = script.due(t_s);
-        if (sim.tick() == 0)
-            commands.insert(commands.begin(), {control::OperatorCommandType::kStart});
+        std::vector<control::OperatorCommand> commands = detail::operator_commands_due(script, sim);
         log_operator(files, commands, t_s);
         const StackCommand command = [&] {
             StageClock clock(timing.command_s);

@@ -210,16 +210,10 @@ RovMissionResult run_rov_mission(const RovMissionScenario& scenario, const std::
 
     sim::SimStep step = sim.start();
     while (true) {
-        if (options.stop_requested && options.stop_requested()) {
-            throw sim::ScenarioInterrupted(
-                fmt::format("interrupted at simulated t = {:.3f} s; nothing was written to {}",
-                            sim.now_s(), directory));
-        }
+        detail::throw_if_stop_requested(options, sim, directory);
         const double t_s = sim.now_s();
         deliver_tick(loop, step, faults, writer, files, t_s);
-        std::vector<control::OperatorCommand> commands = script.due(t_s);
-        if (sim.tick() == 0)
-            commands.insert(commands.begin(), {control::OperatorCommandType::kStart});
+        std::vector<control::OperatorCommand> commands = detail::operator_commands_due(script, sim);
         detail::log_operator(files, commands, t_s);
         const RovStackCommand command = [&] {
             StageClock clock(timing.command_s);

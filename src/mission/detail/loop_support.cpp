@@ -5,6 +5,10 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include <fmt/format.h>
+
+#include <scantling/sim/scenario_runner.hpp>
+
 #include <scantling/io/atomic_file.hpp>
 #include <scantling/io/tum.hpp>
 
@@ -37,6 +41,21 @@ io::EstimateRecord estimate_record(const localization::DroneState& estimate, dou
                 Eigen::Vector3d(std::sqrt(P(0, 0)), std::sqrt(P(1, 1)), std::sqrt(P(2, 2))),
             .yaw_sigma_rad = std::sqrt(P(5, 5)),
             .valid = valid};
+}
+
+void throw_if_stop_requested(const MissionRunOptions& options, const sim::Simulator& sim,
+                             const std::string& directory) {
+    if (!options.stop_requested || !options.stop_requested()) return;
+    throw sim::ScenarioInterrupted(
+        fmt::format("interrupted at simulated t = {:.3f} s; nothing was written to {}", sim.now_s(),
+                    directory));
+}
+
+std::vector<control::OperatorCommand> operator_commands_due(control::OperatorScript& script,
+                                                            const sim::Simulator& sim) {
+    std::vector<control::OperatorCommand> commands = script.due(sim.now_s());
+    if (sim.tick() == 0) commands.insert(commands.begin(), {control::OperatorCommandType::kStart});
+    return commands;
 }
 
 void log_operator(MissionFiles& files, std::span<const control::OperatorCommand> commands,

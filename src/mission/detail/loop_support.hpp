@@ -9,8 +9,10 @@
 #include <vector>
 
 #include <scantling/control/mission_manager.hpp>
+#include <scantling/control/operator_script.hpp>
 #include <scantling/io/mission_log.hpp>
 #include <scantling/localization/local_ekf.hpp>
+#include <scantling/mission/closed_loop.hpp>
 #include <scantling/mission/fault_injection.hpp>
 #include <scantling/planning/waypoints.hpp>
 #include <scantling/sim/recording_writer.hpp>
@@ -54,6 +56,14 @@ void write_text(const std::string& path, const std::string& text);
 /// One tick's line of mission/estimates.csv: the stack's world estimate and its 1σ.
 io::EstimateRecord estimate_record(const localization::DroneState& estimate, double t_s,
                                    bool valid);
+
+/// sim::ScenarioInterrupted (nothing written) when the caller asked the run to stop.
+void throw_if_stop_requested(const MissionRunOptions& options, const sim::Simulator& sim,
+                             const std::string& directory);
+
+/// The operator script's commands due now, after the start that begins every run at tick 0.
+std::vector<control::OperatorCommand> operator_commands_due(control::OperatorScript& script,
+                                                            const sim::Simulator& sim);
 
 void log_operator(MissionFiles& files, std::span<const control::OperatorCommand> commands,
                   double t_s);
