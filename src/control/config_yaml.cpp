@@ -93,6 +93,27 @@ const ConfigSchema<PositionControllerConfig>& position_controller_schema() {
     return schema;
 }
 
+const ConfigSchema<DisturbanceObserverConfig>& disturbance_observer_schema() {
+    static const ConfigSchema<DisturbanceObserverConfig> schema = [] {
+        using C = DisturbanceObserverConfig;
+        ConfigSchema<C> s;
+        s.field("velocity_time_constant_s", &C::velocity_time_constant_s,
+                "tau of the vehicle's velocity loop, s", kPositive)
+            .field("drag_coefficient_per_s", &C::drag_coefficient_per_s,
+                   "c of the vehicle's own linear drag, 1/s", kNonNegative)
+            .field("max_accel_mps2", &C::max_accel_mps2,
+                   "the velocity loop's acceleration authority, m/s^2", kPositive)
+            .field("bandwidth_radps", &C::bandwidth_radps,
+                   "observer poles, rad/s, >= (1/tau + c)/2", kPositive)
+            .field("max_compensation_mps", &C::max_compensation_mps, "|tau d| limit, m/s",
+                   kNonNegative)
+            .field("max_gap_s", &C::max_gap_s, "longer: restart the velocity estimate, s",
+                   kPositive);
+        return s;
+    }();
+    return schema;
+}
+
 const ConfigSchema<VtpConfig>& vtp_schema() {
     static const ConfigSchema<VtpConfig> schema = [] {
         ConfigSchema<VtpConfig> s;

@@ -43,6 +43,12 @@ void Pid::reset() {
     terms_ = {};
 }
 
+void Pid::restore_integral(double integral) {
+    require_finite_input(integral, "integral");
+    integral_ = std::clamp(integral, config_.output_min, config_.output_max);
+    terms_.i = integral_;
+}
+
 double Pid::filtered_derivative(double measurement, double dt_s) {
     if (!has_previous_) return 0.0;
     const double raw = (measurement - previous_measurement_) / dt_s;

@@ -93,12 +93,22 @@ VelocityCommand PositionController::update(const Eigen::Vector3d& p_world_m, dou
             fmt::format("position_controller.update: dt_s = {}, expected finite > 0", dt_s));
     }
     VelocityCommand command;
+    Eigen::Vector3d integral_before;
     for (Eigen::Index i = 0; i < 3; ++i) {
         Pid& pid = axes_[static_cast<std::size_t>(i)];
+        integral_before[i] = pid.integral();
         pid.update(p_target_world_m[i], p_world_m[i], dt_s);
         command.v_cmd_world_mps[i] = pid.last_terms().unsaturated;
     }
     if (command.v_cmd_world_mps.norm() > config_.max_speed_mps) {
+        // Anti-windup on the vector clamp: no integration while it acts. Chasing a VTP δ ahead
+        // keeps δ of along-track error, whose integral would otherwise wind up and, through
+        // the clamp that keeps the cross-track part, push the vehicle off its line.
+        for (Eigen::Index i = 0; i < 3; ++i) {
+            Pid& pid = axes_[static_cast<std::size_t>(i)];
+            command.v_cmd_world_mps[i] -= pid.integral() - integral_before[i];
+            pid.restore_integral(integral_before[i]);
+        }
         command.v_cmd_world_mps = clamp_along_error(
             command.v_cmd_world_mps, p_target_world_m - p_world_m, config_.max_speed_mps);
         command.speed_clamped = true;

@@ -85,6 +85,7 @@ void DroneStackConfig::validate(std::string_view prefix) const {
     require_positive(max_imu_age_s, prefix, "max_imu_age_s");
     require_positive(max_position_sigma_m, prefix, "max_position_sigma_m");
     manager.validate(std::string(prefix) + ".manager");
+    wind.validate(std::string(prefix) + ".wind");
     if (!T_body_lidar.matrix().allFinite()) {
         throw ConfigError(std::string(prefix) + ".T_body_lidar is not finite");
     }
@@ -99,6 +100,7 @@ DroneStack::DroneStack(DroneStackConfig config, planning::WaypointPath path,
       odometry_(config_.odometry,
                 T_world_odom_start_.inverse() * T_world_body_start * config_.T_body_lidar),
       manager_(std::move(path), config_.manager),
+      wind_observer_(config_.wind),
       imu_watchdog_("imu", config_.max_imu_age_s, start_s),
       lidar_watchdog_("lidar", config_.max_sweep_age_s, start_s) {
     local_.initialize(start_s, T_world_odom_start_.inverse() * T_world_body_start);
@@ -276,6 +278,17 @@ StackCommand DroneStack::command(double t_s,
                                            .v_world_mps = state.v_odom_mps,
                                            .valid = estimate_valid() && !imu_watchdog_.lost(),
                                            .holdable = !imu_watchdog_.lost()};
+    // Observed only on a valid estimate, at its own stamp: an estimate the IMU has stopped
+    // updating is not seen again as a vehicle standing still, and one that has been declared
+    // invalid (an IMU gap, a lost position) may carry a velocity that is metres per second
+    // off, which the observer would turn into a real motion (measured after a 0.2 s IMU gap,
+    // docs/results.md). Nor once the manager has failed safe, which trusts the estimate no
+    // more. Meanwhile the last wind estimate is held.
+    const bool failed_safe = manager_.state() == control::MissionState::kFailsafe;
+    if (config_.wind_compensation && estimate.valid && !failed_safe &&
+        estimate.v_world_mps.allFinite() && std::isfinite(state.stamp_s)) {
+        wind_observer_.observe(estimate.v_world_mps, state.stamp_s);
+    }
     control::MissionTick tick = manager_.update(estimate, t_s, commands);
     // A rejected sample may not even have a finite stamp: such events take the tick's time.
     for (control::MissionEvent& e : pending_events_) {
@@ -305,6 +318,11 @@ StackCommand DroneStack::command(double t_s,
                               .reason = "the safety layer gave a non-finite command: hover"});
         out.v_world_mps.setZero();
         out.yaw_rate_radps = 0.0;
+    }
+    if (config_.wind_compensation) {
+        const Eigen::Vector3d v_safe_world_mps = out.v_world_mps;
+        out.v_world_mps = wind_observer_.command(v_safe_world_mps);
+        out.wind_compensation_mps = out.v_world_mps - v_safe_world_mps;
     }
     return out;
 }

@@ -89,7 +89,10 @@ const io::ConfigSchema<DroneStackConfig>& stack_schema() {
             .field("max_position_sigma_m", &S::max_position_sigma_m,
                    "larger horizontal σ: estimate invalid, hover, m", io::kPositive)
             .section("global_ekf", &S::global_ekf, global_ekf_schema())
-            .section("manager", &S::manager, control::mission_manager_schema());
+            .section("manager", &S::manager, control::mission_manager_schema())
+            .field("wind_compensation", &S::wind_compensation,
+                   "disturbance observer under the safety layer")
+            .section("wind", &S::wind, control::disturbance_observer_schema());
         return s;
     }();
     return schema;

@@ -149,6 +149,19 @@ TEST(Pid, NonFiniteInputsAndBadStepsThrowAndLeaveTheStateUnchanged) {
     EXPECT_EQ(pid.update(1.0, 0.1, kDt), reference.update(1.0, 0.1, kDt));
 }
 
+TEST(Pid, RestoringTheIntegralClampsItAndRefusesNaN) {
+    Pid pid({.kp = 1.0, .ki = 2.0, .output_min = -1.0, .output_max = 1.0});
+    pid.update(1.0, 0.5, 0.1);
+    EXPECT_DOUBLE_EQ(pid.integral(), 0.1);  // ki e dt = 2 · 0.5 · 0.1
+    pid.restore_integral(0.0);
+    EXPECT_EQ(pid.integral(), 0.0);
+    EXPECT_EQ(pid.last_terms().i, 0.0);
+    pid.restore_integral(5.0);
+    EXPECT_EQ(pid.integral(), 1.0);
+    EXPECT_THROW(pid.restore_integral(std::numeric_limits<double>::quiet_NaN()), InputError);
+    EXPECT_EQ(pid.integral(), 1.0);
+}
+
 TEST(Pid, BadConfigsAreRefusedNamingTheField) {
     SCANTLING_EXPECT_ERROR(Pid({.kp = -1.0,
                                 .ki = 0.0,

@@ -41,6 +41,29 @@ TEST(PositionController, DrivesTheVelocityPlantToAWaypointAndHoldsIt) {
     EXPECT_LE((plant.p - target).norm(), 0.01);
 }
 
+TEST(PositionController, DoesNotIntegrateWhileTheSpeedClampActs) {
+    // Chasing a target that stays 2 m ahead (a VTP δ ahead) along a diagonal: the clamp acts
+    // on every update, and an integral of the 2 m along-track error would wind up, each axis
+    // its own share, and push the vehicle off its line through the clamp's cross-track part.
+    PositionController controller;
+    test::Plant3d plant{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+    const Eigen::Vector3d along = Eigen::Vector3d(3.0, -1.0, 0.5).normalized();
+    double largest_offset_m = 0.0;
+    for (int k = 1; k <= 200; ++k) {  // 10 s
+        const Eigen::Vector3d target = along * (along.dot(plant.p) + 2.0);
+        const VelocityCommand command = controller.update(plant.p, 0.0, target, 0.0, kDt);
+        EXPECT_TRUE(command.speed_clamped);
+        plant.step(command.v_cmd_world_mps, kDt, Eigen::Vector3d::Zero());
+        largest_offset_m =
+            std::max(largest_offset_m, (plant.p - along * along.dot(plant.p)).norm());
+    }
+    for (std::size_t i = 0; i < 3; ++i) EXPECT_EQ(controller.axis(i).integral(), 0.0) << i;
+    EXPECT_LT(largest_offset_m, 1e-9);
+    // Within reach the integral works again.
+    controller.update(plant.p, 0.0, plant.p + Eigen::Vector3d(0.1, 0.0, 0.0), 0.0, kDt);
+    EXPECT_GT(controller.axis(0).integral(), 0.0);
+}
+
 TEST(PositionController, YawTurnsTheShortWayRoundAndIsRateLimited) {
     PositionController controller;
     const Eigen::Vector3d p = Eigen::Vector3d::Zero();

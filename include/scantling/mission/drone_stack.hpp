@@ -27,7 +27,9 @@
 /// Per command tick: the global estimate → mission manager (control/mission_manager.hpp:
 /// VTP follower and position PIDs) → collision prevention and height keeping on the latest
 /// sweep (safety/, in the body frame of the estimate; the sweep's nearby points and vertical
-/// clearances are gathered once when it arrives, safety/obstacle_points.hpp) → command. A command
+/// clearances are gathered once when it arrives, safety/obstacle_points.hpp) → wind
+/// compensation (the disturbance observer, fed with the estimate's velocity while the
+/// estimate is valid; its last wind is held while it is not) → command. A command
 /// is never NaN: the manager replaces one with a hover, and so does this stack (with an event)
 /// after the safety layer.
 ///
@@ -41,6 +43,7 @@
 #include <string>
 #include <vector>
 
+#include <scantling/control/disturbance_observer.hpp>
 #include <scantling/control/mission_manager.hpp>
 #include <scantling/core/point_cloud.hpp>
 #include <scantling/io/recording.hpp>
@@ -105,6 +108,11 @@ struct DroneStackConfig {
     /// The estimate is declared invalid when its horizontal position σ exceeds this, m, > 0.
     double max_position_sigma_m = 2.0;
     control::MissionManagerConfig manager{};
+    /// Wind compensation under the safety layer (control/disturbance_observer.hpp): the
+    /// vehicle flies the velocity the safety layer let through, whatever the wind. Off, the
+    /// position PIDs' integral alone learns the wind from the position error it lets grow.
+    bool wind_compensation = true;
+    control::DisturbanceObserverConfig wind{};                       ///< YAML: stack.wind
     Eigen::Isometry3d T_body_lidar = Eigen::Isometry3d::Identity();  ///< LiDAR mount
 
     /// Throws ConfigError naming "<prefix>.<field>".
@@ -117,6 +125,8 @@ struct StackCommand {
     double yaw_rate_radps = 0.0;
     Eigen::Vector3d v_requested_world_mps = Eigen::Vector3d::Zero();  ///< the manager's
     bool limited = false;  ///< the safety layer changed the request
+    /// What the wind compensation added to the safety layer's output (v_world_mps includes it).
+    Eigen::Vector3d wind_compensation_mps = Eigen::Vector3d::Zero();
     std::optional<safety::CollisionPreventionResult> collision;
     control::MissionState state = control::MissionState::kIdle;
     std::vector<control::MissionEvent> events;
@@ -172,6 +182,7 @@ class DroneStack {
     localization::GlobalEkf global_;
     odometry::LidarOdometry odometry_;
     control::MissionManager manager_;
+    control::DisturbanceObserver wind_observer_;
     /// LiODOM's pose at the previous registered sweep, and the global estimate of the body pose
     /// there.
     std::optional<Eigen::Isometry3d> T_lodom_lidar_previous_;
