@@ -83,6 +83,7 @@ void DroneStackConfig::validate(std::string_view prefix) const {
     height.validate(std::string(prefix) + ".height");
     require_positive(max_sweep_age_s, prefix, "max_sweep_age_s");
     require_positive(max_imu_age_s, prefix, "max_imu_age_s");
+    require_non_negative(imu_coast_s, prefix, "imu_coast_s");
     require_positive(max_position_sigma_m, prefix, "max_position_sigma_m");
     manager.validate(std::string(prefix) + ".manager");
     wind.validate(std::string(prefix) + ".wind");
@@ -289,7 +290,9 @@ StackCommand DroneStack::command(double t_s,
         estimate.v_world_mps.allFinite() && std::isfinite(state.stamp_s)) {
         wind_observer_.observe(estimate.v_world_mps, state.stamp_s);
     }
+    const control::MissionState state_before = manager_.state();
     control::MissionTick tick = manager_.update(estimate, t_s, commands);
+    coast(t_s, !commands.empty(), state_before, tick);
     // A rejected sample may not even have a finite stamp: such events take the tick's time.
     for (control::MissionEvent& e : pending_events_) {
         if (!std::isfinite(e.t_s)) e.t_s = t_s;
@@ -325,6 +328,23 @@ StackCommand DroneStack::command(double t_s,
         out.wind_compensation_mps = out.v_world_mps - v_safe_world_mps;
     }
     return out;
+}
+
+void DroneStack::coast(double t_s, bool operator_acted, control::MissionState state_before,
+                       control::MissionTick& tick) {
+    if (!imu_watchdog_.lost()) {
+        coast_over_ = false;
+    } else if (!coast_over_) {
+        const double lost_for_s = imu_watchdog_.age_s(t_s) - config_.max_imu_age_s;
+        coast_over_ =
+            operator_acted || tick.state != state_before || lost_for_s >= config_.imu_coast_s;
+        if (!coast_over_) {
+            tick.v_cmd_world_mps = last_v_cmd_world_mps_;
+            tick.yaw_rate_cmd_radps = last_yaw_rate_cmd_radps_;
+        }
+    }
+    last_v_cmd_world_mps_ = tick.v_cmd_world_mps;
+    last_yaw_rate_cmd_radps_ = tick.yaw_rate_cmd_radps;
 }
 
 Eigen::Vector3d DroneStack::apply_safety(const Eigen::Vector3d& v_world_mps, double t_s,

@@ -86,6 +86,8 @@ const io::ConfigSchema<DroneStackConfig>& stack_schema() {
                    "older: no safety data, the LiDAR is lost, s", io::kPositive)
             .field("max_imu_age_s", &S::max_imu_age_s,
                    "IMU silent longer: the estimate is invalid, s", io::kPositive)
+            .field("imu_coast_s", &S::imu_coast_s,
+                   "after the IMU is lost, keep the last command this long, s", io::kNonNegative)
             .field("max_position_sigma_m", &S::max_position_sigma_m,
                    "larger horizontal σ: estimate invalid, hover, m", io::kPositive)
             .section("global_ekf", &S::global_ekf, global_ekf_schema())
