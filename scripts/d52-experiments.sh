@@ -8,7 +8,8 @@
 #   scripts/d52-experiments.sh [build-dir] [work-dir] [figures-dir]
 # build-dir holds apps/scantling (default build), work-dir the recordings (default
 # /tmp/scantling-d52), figures-dir the SVG plots (default: work-dir). D52_ONLY="goto_ab"
-# restricts the experiments; D52_SEED picks the seed (default: the scenarios' 1).
+# restricts the experiments; D52_SEED picks the seed (default: the scenarios' 1); D52_SET adds
+# one --set override to every run (e.g. D52_SET=stack.wind_compensation=false).
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 build="${1:-build}"
@@ -20,6 +21,7 @@ cli="$build/apps/scantling"
 mkdir -p "$work" "$figures"
 seed_args=()
 [[ -n "${D52_SEED:-}" ]] && seed_args=(--seed "$D52_SEED")
+[[ -n "${D52_SET:-}" ]] && seed_args+=(--set "$D52_SET")
 
 run() {  # experiment follower(on|off)
   local out="$work/$1_$2" vtp=true
