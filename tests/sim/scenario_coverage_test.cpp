@@ -14,7 +14,7 @@
 #include <scantling/sim/scenario.hpp>
 #include <scantling/sim/scenario_runner.hpp>
 
-#include <scantling/sim/surface_projector.hpp>
+#include <scantling/core/surface_projector.hpp>
 #include "scenario_test_support.hpp"
 
 namespace scantling::sim {

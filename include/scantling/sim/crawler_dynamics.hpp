@@ -25,9 +25,9 @@
 #include <cstdint>
 #include <string_view>
 
+#include <scantling/core/surface_projector.hpp>
 #include <scantling/sim/disturbance.hpp>
 #include <scantling/sim/motion_state.hpp>
-#include <scantling/sim/surface_projector.hpp>
 
 namespace scantling::sim {
 

@@ -7,12 +7,12 @@
 #include <vector>
 
 #include <scantling/core/random.hpp>
+#include <scantling/core/surface_projector.hpp>
 #include <scantling/sim/motion_state.hpp>
 #include <scantling/sim/recording_writer.hpp>
 #include <scantling/sim/scenario.hpp>
 #include <scantling/sim/sensor_mount.hpp>
 #include <scantling/sim/sensor_reading.hpp>
-#include <scantling/sim/surface_projector.hpp>
 
 namespace scantling::sim::detail {
 

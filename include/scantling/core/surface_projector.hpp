@@ -12,7 +12,7 @@
 
 #include <scantling/core/triangle_mesh.hpp>
 
-namespace scantling::sim {
+namespace scantling {
 
 struct SurfacePoint {
     Eigen::Vector3d point = Eigen::Vector3d::Zero();    ///< on the surface, world frame
@@ -98,4 +98,4 @@ class MeshSurface final : public SurfaceProjector {
     std::vector<std::uint32_t> cell_triangles_;
 };
 
-}  // namespace scantling::sim
+}  // namespace scantling

@@ -1,11 +1,11 @@
 #include <scantling/core/error.hpp>
-#include <scantling/sim/surface_projector.hpp>
+#include <scantling/core/surface_projector.hpp>
 
 #include <fmt/format.h>
 
 #include <cmath>
 
-namespace scantling::sim {
+namespace scantling {
 namespace {
 
 Eigen::Vector3d unit_or_throw(const Eigen::Vector3d& v, const char* what) {
@@ -57,4 +57,4 @@ SurfacePoint CylinderSurface::project(const Eigen::Vector3d& p_world) const {
     return {on_axis + radius_m_ * outward, side_sign_ * outward};
 }
 
-}  // namespace scantling::sim
+}  // namespace scantling

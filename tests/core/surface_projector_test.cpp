@@ -1,14 +1,14 @@
 #include <scantling/core/error.hpp>
 #include <scantling/core/random.hpp>
-#include <scantling/sim/surface_projector.hpp>
+#include <scantling/core/surface_projector.hpp>
 
-#include "vehicle_test_support.hpp"
+#include "analytic_meshes.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-namespace scantling::sim {
+namespace scantling {
 namespace {
 
 using testing::grid_plate;
@@ -78,4 +78,4 @@ TEST(MeshSurface, RejectsEmptyMeshAndNonFinitePoints) {
 }
 
 }  // namespace
-}  // namespace scantling::sim
+}  // namespace scantling

@@ -1,11 +1,11 @@
 #include <scantling/core/error.hpp>
-#include <scantling/sim/surface_projector.hpp>
+#include <scantling/core/surface_projector.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-namespace scantling::sim {
+namespace scantling {
 namespace {
 
 // Bound on the grid size: beyond it cells grow instead (memory ~ 4 bytes per cell).
@@ -147,4 +147,4 @@ SurfacePoint MeshSurface::project(const Eigen::Vector3d& p_world) const {
     return {best.point, normal_at(best.triangle, best.point)};
 }
 
-}  // namespace scantling::sim
+}  // namespace scantling
