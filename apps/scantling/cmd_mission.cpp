@@ -11,6 +11,7 @@
 #include <scantling/core/error.hpp>
 #include <scantling/io/file_path.hpp>
 #include <scantling/mission/closed_loop.hpp>
+#include <scantling/mission/crawler_mission.hpp>
 #include <scantling/mission/mission_scenario.hpp>
 #include <scantling/mission/rov_mission.hpp>
 #include <scantling/sim/scenario_runner.hpp>
@@ -163,12 +164,53 @@ void run_rov_mission(const MissionOptions& options, std::ostream& out) {
     out << rov_summary_text(scenario, result);
 }
 
+std::string crawler_summary_text(const mission::CrawlerMissionScenario& m,
+                                 const mission::CrawlerMissionResult& r) {
+    std::string text = fmt::format("recording: {}\n", r.directory);
+    text += fmt::format(
+        "scenario: {} (world {}, seed {}, crawler rectangle {:.2f} x {:.2f} m, {} transects "
+        "{:.3f} m apart)\n",
+        m.name, sim::to_string(m.simulation.world.type), m.simulation.seed, m.rectangle.width_m,
+        m.rectangle.height_m, r.transects, r.step_m);
+    text += fmt::format("final_state: {}\nwaypoints_reached: {} / {}\nmission_time: {:.1f} s\n",
+                        control::to_string(r.final_state), r.waypoints_reached, 2 * r.transects,
+                        r.mission_time_s);
+    text += fmt::format("cross_track: mean {:.3f} m, max {:.3f} m ({} samples)\n",
+                        r.cross_track_mean_m, r.cross_track_max_m, r.cross_track_samples);
+    text += fmt::format("coverage: {:.1f} % of the rectangle ({:.2f} m swath)\n",
+                        100.0 * r.coverage, m.swath_width_m);
+    text += fmt::format("estimate_error: rms {:.3f} m, max {:.3f} m, heading rms {:.2f} deg\n",
+                        r.position_error_rms_m, r.position_error_max_m,
+                        r.yaw_error_rms_rad * 180.0 / M_PI);
+    text += fmt::format("uwb: {} ranges applied, {} refused\n", r.uwb_applied, r.uwb_refused);
+    if (r.inputs_rejected > 0) text += fmt::format("inputs_rejected: {}\n", r.inputs_rejected);
+    text += fmt::format("path_length: {:.1f} m\nevents: {}\n", r.path_length_m, r.events);
+    text += fmt::format("wall_time: {:.1f} s\nreal_time_factor: {:.1f}x\n", r.wall_time_s,
+                        r.real_time_factor);
+    return text;
+}
+
+void run_crawler_mission(const MissionOptions& options, std::ostream& out) {
+    mission::CrawlerMissionScenario scenario =
+        mission::load_crawler_mission_scenario(options.scenario, options.overrides);
+    if (options.seed) scenario.simulation.seed = *options.seed;
+    if (options.num_threads != 0) scenario.simulation.parallel.num_threads = options.num_threads;
+    const mission::CrawlerMissionResult result =
+        run_interruptible(options, [&](const mission::MissionRunOptions& run_options) {
+            return mission::run_crawler_mission(scenario, options.out, run_options);
+        });
+    out << crawler_summary_text(scenario, result);
+}
+
 }  // namespace
 
 void run_mission(const MissionOptions& options, std::ostream& out) {
     if (options.out.empty()) throw ConfigError("--out is required");
     io::ensure_output_distinct(options.out, {options.scenario});
     if (mission::is_rov_mission_file(options.scenario)) return run_rov_mission(options, out);
+    if (mission::is_crawler_mission_file(options.scenario)) {
+        return run_crawler_mission(options, out);
+    }
     mission::MissionScenario scenario =
         mission::load_mission_scenario(options.scenario, options.overrides);
     if (options.seed) scenario.simulation.seed = *options.seed;

@@ -18,13 +18,14 @@ namespace {
 
 constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
 
-/// The sensors whose readings the stacks consume as measurements (the drone's and the ROV's),
+/// The sensors whose readings the stacks consume as measurements (the drone's, the ROV's and
+/// the crawler's),
 /// hence the ones a NaN fault can poison (poisoned() below).
 bool poisonable(sim::SensorType type) {
     using T = sim::SensorType;
     return type == T::kSpinningLidar || type == T::kImu || type == T::kRangeFinder ||
            type == T::kBarometer || type == T::kUwb || type == T::kDvl || type == T::kPressure ||
-           type == T::kMultibeamSonar;
+           type == T::kMultibeamSonar || type == T::kWheelOdometry;
 }
 
 bool inside(const SensorFault& f, double t_s) {
@@ -98,6 +99,9 @@ sim::SensorReading poisoned(sim::SensorReading reading) {
     } else if (auto* pressure = std::get_if<sim::PressureSample>(&reading.data)) {
         pressure->depth_m = kNan;
         pressure->pressure_pa = kNan;
+    } else if (auto* wheel = std::get_if<sim::WheelOdometrySample>(&reading.data)) {
+        wheel->forward_speed_mps = kNan;
+        wheel->yaw_rate_radps = kNan;
     } else if (auto* sonar = std::get_if<sim::SonarReading>(&reading.data)) {
         std::fill(sonar->image.intensity.begin(), sonar->image.intensity.end(),
                   std::numeric_limits<float>::quiet_NaN());

@@ -102,6 +102,8 @@ const MotionState& CrawlerDynamics::step(const CrawlerCommand& command) {
     const Eigen::Vector3d v_world = T.linear() * slip_velocity_body(wheel_v_mps_);
     ++steps_;
     state_ = detail::next_state(state_, detail::stamp_at(start_s_, steps_, dt), T, v_world, dt);
+    state_.wheel_forward_mps = wheel_v_mps_;
+    state_.wheel_yaw_rate_radps = wheel_w_radps_;
     return state_;
 }
 

@@ -8,6 +8,7 @@
 #include <optional>
 
 #include <scantling/core/error.hpp>
+#include <scantling/sim/crawler_dynamics.hpp>
 #include <scantling/sim/mav_dynamics.hpp>
 #include <scantling/sim/ray_caster.hpp>
 #include <scantling/sim/rov_dynamics.hpp>
@@ -28,11 +29,11 @@ struct PendingFiring {
     double ready_s = 0.0;  ///< the firing is cast once the clock reaches this
 };
 
-/// MAV or ROV under a world-frame velocity command.
+/// MAV or ROV under a world-frame velocity command, or a crawler on its surface.
 class Vehicle {
   public:
-    Vehicle(const Scenario& scenario, const Eigen::Isometry3d& T_world_body_start,
-            std::uint64_t seed) {
+    Vehicle(const Scenario& scenario, const World& world,
+            const Eigen::Isometry3d& T_world_body_start, std::uint64_t seed) {
         const VehicleSpec& spec = scenario.vehicle;
         if (spec.type == VehicleType::kMav) {
             MavDynamicsConfig config = spec.mav;
@@ -42,22 +43,34 @@ class Vehicle {
             RovDynamicsConfig config = spec.rov;
             config.dt_s = scenario.dt_s;
             rov_.emplace(config, T_world_body_start, seed);
+        } else if (spec.type == VehicleType::kCrawler) {
+            CrawlerDynamicsConfig config = spec.crawler;
+            config.dt_s = scenario.dt_s;
+            surface_ = detail::crawler_surface(scenario.world, world);
+            crawler_.emplace(config, *surface_, T_world_body_start, seed);
         } else {
             throw ConfigError(
-                "vehicle.type: expected mav or rov in the closed loop (scripted, legged and "
-                "crawler vehicles do not follow world-frame velocity commands)");
+                "vehicle.type: expected mav, rov or crawler in the closed loop (scripted and "
+                "legged vehicles do not follow commands)");
         }
     }
 
     MotionState step(const VehicleCommand& command) {
         if (mav_) return mav_->step(MavCommand{command.v_world_mps, command.yaw_rate_radps});
+        if (crawler_) {
+            return crawler_->step(CrawlerCommand{.v_mps = command.forward_mps,
+                                                 .yaw_rate_radps = command.yaw_rate_radps});
+        }
         // The ROV takes surge, sway, heave in its yawed frame.
         const Eigen::Vector3d v =
             Eigen::AngleAxisd(-rov_->yaw_rad(), Eigen::Vector3d::UnitZ()) * command.v_world_mps;
         return rov_->step(RovCommand{v.x(), v.y(), v.z(), command.yaw_rate_radps});
     }
 
-    const MotionState& state() const { return mav_ ? mav_->state() : rov_->state(); }
+    const MotionState& state() const {
+        if (mav_) return mav_->state();
+        return crawler_ ? crawler_->state() : rov_->state();
+    }
     Eigen::Vector3d wind_world_mps() const {
         return mav_ ? mav_->wind_world_mps() : Eigen::Vector3d::Zero();
     }
@@ -65,9 +78,15 @@ class Vehicle {
   private:
     std::optional<MavDynamics> mav_;
     std::optional<RovDynamics> rov_;
+    std::unique_ptr<SurfaceProjector> surface_;  ///< the crawler's, outlives it
+    std::optional<CrawlerDynamics> crawler_;
 };
 
 }  // namespace
+
+std::unique_ptr<SurfaceProjector> crawler_surface(const Scenario& scenario, const World& world) {
+    return detail::crawler_surface(scenario.world, world);
+}
 
 struct Simulator::Impl {
     Scenario scenario;
@@ -91,7 +110,7 @@ struct Simulator::Impl {
           caster(world.mesh, world.surface_tags),
           obstacles(scenario.moving_obstacles),
           scene{caster, world.metadata, &obstacles, 0.0},
-          vehicle(scenario, checked_start(T_world_body_start),
+          vehicle(scenario, world, checked_start(T_world_body_start),
                   root.split(detail::kVehicleStream).next_u64()),
           history({vehicle.state()}, scenario.dt_s),
           clock(scenario.dt_s) {
@@ -154,7 +173,8 @@ SimStep Simulator::start() {
 
 SimStep Simulator::step(const VehicleCommand& command) {
     if (!impl_->started) throw InputError("simulator: step() before start()");
-    if (!command.v_world_mps.allFinite() || !std::isfinite(command.yaw_rate_radps)) {
+    if (!command.v_world_mps.allFinite() || !std::isfinite(command.yaw_rate_radps) ||
+        !std::isfinite(command.forward_mps)) {
         throw InputError(fmt::format("simulator: command at t = {:.3f} s is not finite", now_s()));
     }
     MotionState state = impl_->vehicle.step(command);

@@ -70,8 +70,10 @@ WheelOdometrySample WheelOdometrySimulator::measure(const MotionState& truth, Rn
     started_ = true;
     previous_stamp_s_ = truth.stamp_s;
 
-    const double v_mps = (truth.T_world_body.linear().transpose() * truth.v_world_mps).x();
-    const double omega_radps = truth.omega_body_radps.z();
+    // A crawler's encoders count the wheels' turns: the slip is what odometry does not see.
+    const double v_mps = truth.wheel_forward_mps.value_or(
+        (truth.T_world_body.linear().transpose() * truth.v_world_mps).x());
+    const double omega_radps = truth.wheel_yaw_rate_radps.value_or(truth.omega_body_radps.z());
     const double speed_factor = 1.0 + slip_ + rng.normal(0.0, config_.speed_noise_fraction);
     const double speed_noise = rng.normal(0.0, config_.speed_noise_mps);
     const double rate_factor = 1.0 + rng.normal(0.0, config_.yaw_rate_noise_fraction);

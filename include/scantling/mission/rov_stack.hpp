@@ -55,6 +55,7 @@
 #include <scantling/io/sonar_ping.hpp>
 #include <scantling/localization/local_ekf.hpp>
 #include <scantling/mapping/sonar_inspection_map.hpp>
+#include <scantling/mission/stack_event.hpp>
 #include <scantling/perception/camera_coverage.hpp>
 #include <scantling/perception/laser_pointers.hpp>
 #include <scantling/perception/sonar_hull_line.hpp>
@@ -112,13 +113,6 @@ struct RovStackConfig {
 
     /// Throws ConfigError naming "<prefix>.<field>".
     void validate(std::string_view prefix = "stack") const;
-};
-
-/// One thing the stack reports (written to mission/events.jsonl as `type` with `json`).
-struct StackEvent {
-    double t_s = 0.0;
-    std::string type;
-    std::string json = "{}";
 };
 
 /// What the stack did with a command tick.

@@ -11,6 +11,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <optional>
 
 namespace scantling::sim {
 
@@ -20,6 +21,11 @@ struct MotionState {
     Eigen::Vector3d v_world_mps = Eigen::Vector3d::Zero();       ///< body-origin velocity, world
     Eigen::Vector3d a_world_mps2 = Eigen::Vector3d::Zero();      ///< body-origin acceleration
     Eigen::Vector3d omega_body_radps = Eigen::Vector3d::Zero();  ///< angular rate, body frame
+    /// A crawler's wheels at `stamp_s`: the forward speed and the turn rate they make, without
+    /// the slip (crawler_dynamics.hpp). Wheel encoders see these, not the body's motion; for a
+    /// vehicle without them, wheel odometry derives both from the motion.
+    std::optional<double> wheel_forward_mps;
+    std::optional<double> wheel_yaw_rate_radps;
 };
 
 }  // namespace scantling::sim

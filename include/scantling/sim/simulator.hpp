@@ -31,6 +31,7 @@
 #include <memory>
 #include <vector>
 
+#include <scantling/core/surface_projector.hpp>
 #include <scantling/sim/motion_state.hpp>
 #include <scantling/sim/moving_obstacles.hpp>
 #include <scantling/sim/scenario.hpp>
@@ -40,11 +41,14 @@
 
 namespace scantling::sim {
 
-/// The robot's command to the simulated vehicle: a world-frame velocity and a yaw rate about
-/// world z (an ROV receives it rotated into its yawed body frame).
+/// The robot's command to the simulated vehicle. A MAV takes a world-frame velocity and a yaw
+/// rate about world z; an ROV receives the same rotated into its yawed body frame. A crawler
+/// (on its surface) takes `forward_mps` along its heading and `yaw_rate_radps` about the
+/// surface normal, and ignores `v_world_mps`: its wheels know only their own frame.
 struct VehicleCommand {
     Eigen::Vector3d v_world_mps = Eigen::Vector3d::Zero();
     double yaw_rate_radps = 0.0;
+    double forward_mps = 0.0;  ///< crawler only
 };
 
 /// What one tick produced.
@@ -54,11 +58,17 @@ struct SimStep {
     std::vector<SensorReading> readings;  ///< in stamp order, then sensor order
 };
 
+/// The surface a crawler of `scenario` drives on, as a robot's map of it: the plate's plane,
+/// the cylinder's or the storage tank's shell (analytic), otherwise the world mesh (`world`
+/// must then outlive the result).
+std::unique_ptr<SurfaceProjector> crawler_surface(const Scenario& scenario, const World& world);
+
 class Simulator {
   public:
     /// Builds the world and the sensors of `scenario` (validated: ConfigError) and puts the
-    /// vehicle at rest at `T_world_body_start`. Throws ConfigError for a vehicle type other
-    /// than mav or rov, InputError for a non-finite start.
+    /// vehicle at rest at `T_world_body_start` (a crawler: projected onto its surface, the
+    /// world's plate, cylinder, tank wall or mesh). Throws ConfigError for a scripted or legged
+    /// vehicle, InputError for a non-finite start.
     Simulator(const Scenario& scenario, const Eigen::Isometry3d& T_world_body_start);
     ~Simulator();
     Simulator(const Simulator&) = delete;

@@ -6,7 +6,9 @@
 ///
 /// Frames: the body x axis is the driving direction, z the normal of the surface driven on
 /// (a crawler on a vertical hull has z horizontal). forward speed = x of R_world_bodyᵀ v_world,
-/// yaw rate = z of ω_body.
+/// yaw rate = z of ω_body; for a crawler, whose state carries its wheels' own motion
+/// (MotionState::wheel_forward_mps), the wheels' speed and turn rate instead: its encoders do
+/// not see the surface slip of crawler_dynamics.hpp.
 /// Noise, per sample: v' = (1 + scale_error) · v · (1 + slip + N(0, speed_noise_fraction²))
 /// + N(0, speed_noise_mps²); ω' = ω · (1 + N(0, yaw_rate_noise_fraction²)) + slip_yaw_rate
 /// + N(0, yaw_rate_noise_radps²). scale_error ~ N(0, scale_error_sigma²) is drawn once.

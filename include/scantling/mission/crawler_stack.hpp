@@ -1,0 +1,135 @@
+#pragma once
+/// @file
+/// The magnetic crawler's autonomy stack as one plain object (issue 15; SPEC §6): fed with the
+/// io types a recording gives (IMU, wheel odometry, UWB ranges), it returns the wheel command
+/// (forward speed, turn rate about the surface normal). It never sees the simulator.
+///
+/// Pipeline:
+///   IMU, wheels → the particle filter's prediction on the known surface
+///                 (localization/surface_particle_filter.hpp); UWB → its update;
+///   at the start the crawler stands still for gyro_calibration_s: the gyro's mean is its
+///   bias, taken off every later sample;
+///   per command tick: the PF pose → the segment follower (control/segment_follower.hpp) on
+///   the current leg → command.
+/// The legs are laid on the surface at construction (planning/surface_rectangle.hpp's
+/// surface_line): the first from the start pose to the first waypoint (SPEC's GoToMesh), then
+/// one per pair of waypoints (the rectangle's transects and the steps between them). A leg is
+/// done when the follower has passed its last segment; the mission is then at its next
+/// waypoint (a `waypoint_reached` event) and completes after the last one.
+/// The operator may pause (stand still), resume, and abort (stand still for good). A sample
+/// with a non-finite value is dropped before the filter with an `input_rejected` event (once
+/// per episode); the wheels silent for longer than `max_wheel_age_s` stop the crawler (a
+/// `sensor_lost` event; it goes on when they are back): without them the PF is blind to its
+/// own motion. A command is never NaN.
+///
+/// Frames: world; body x forward, z the surface normal. Thread-safety: not thread-safe, one
+/// stack per vehicle. Deterministic for a seed and an input sequence.
+
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <scantling/control/mission_manager.hpp>
+#include <scantling/control/segment_follower.hpp>
+#include <scantling/core/surface_projector.hpp>
+#include <scantling/io/recording.hpp>
+#include <scantling/localization/surface_particle_filter.hpp>
+#include <scantling/mission/stack_event.hpp>
+#include <scantling/planning/surface_rectangle.hpp>
+
+namespace scantling::mission {
+
+struct CrawlerStackConfig {
+    localization::SurfaceParticleFilterConfig particle_filter{};  ///< YAML: stack.particle_filter
+    control::SegmentFollowerConfig follower{};                    ///< YAML: stack.follower
+    planning::SurfaceWalkConfig walk{};                           ///< YAML: stack.walk
+    /// The wheels silent longer than this stop the crawler, s, > 0 (five periods at 50 Hz).
+    double max_wheel_age_s = 0.1;
+    /// Standing still this long after the start, s, >= 0 (0: off), the gyro's mean is its
+    /// turn-on bias, subtracted from every later sample. A consumer MEMS gyro's is up to
+    /// 0.5°/s, 30° of heading a minute, which the filter's heading diffusion cannot follow:
+    /// measured on the tank rectangle, its heading otherwise left by 111° with a 0.005 rad/√s
+    /// diffusion (docs/results.md).
+    double gyro_calibration_s = 2.0;
+
+    /// Throws ConfigError naming "<prefix>.<field>".
+    void validate(std::string_view prefix = "stack") const;
+};
+
+/// What the stack did with a command tick.
+struct CrawlerStackCommand {
+    double forward_mps = 0.0;
+    double yaw_rate_radps = 0.0;
+    control::MissionState state = control::MissionState::kIdle;
+    std::size_t leg = 0;  ///< the leg followed (the number of legs once done)
+    /// The follower's error in the current segment (estimate, not truth).
+    control::SegmentFrameError error;
+    std::vector<StackEvent> events;
+};
+
+class CrawlerStack {
+  public:
+    /// `surface`: the known surface the filter keeps its particles on (not owned, must outlive
+    /// the stack). `waypoints_world_m`: the mission's, in order (at least one).
+    /// ConfigError for a bad config, InputError for a non-finite start or a leg that leaves
+    /// the surface.
+    CrawlerStack(const CrawlerStackConfig& config, const SurfaceProjector& surface,
+                 std::vector<Eigen::Vector3d> waypoints_world_m,
+                 const Eigen::Isometry3d& T_world_body_start, std::uint64_t seed);
+
+    void add_imu(const io::ImuRecord& sample);
+    void add_wheel_odometry(const io::WheelOdometryRecord& sample);
+    void add_uwb(const io::UwbRecord& range);
+
+    /// The command at `t_s` after the operator's commands (start, pause, resume, abort).
+    CrawlerStackCommand command(double t_s,
+                                std::span<const control::OperatorCommand> operator_commands);
+
+    localization::SurfaceParticleEstimate estimate() const { return filter_.estimate(); }
+    const localization::SurfaceParticleFilter& filter() const { return filter_; }
+    /// Every leg's segments, in order (leg_begin(i) is where leg i starts).
+    const std::vector<control::PathSegment>& intended_path() const { return intended_; }
+    std::size_t leg_begin(std::size_t leg) const { return leg_begins_.at(leg); }
+    std::size_t num_legs() const { return legs_.size(); }
+    const std::vector<Eigen::Vector3d>& waypoints() const { return waypoints_; }
+    control::MissionState state() const { return state_; }
+    std::size_t inputs_rejected() const { return inputs_rejected_; }
+
+  private:
+    bool screen(bool finite, const std::string& sensor, double stamp_s);
+    void apply(const control::OperatorCommand& command, double t_s,
+               std::vector<StackEvent>& events);
+    void change_state(control::MissionState to, const std::string& reason, double t_s,
+                      std::vector<StackEvent>& events);
+    void watch_wheels(double t_s, std::vector<StackEvent>& events);
+    void follow(CrawlerStackCommand& out, double t_s);
+    /// True while the start's gyro calibration runs (standing still); ends it when due.
+    bool calibrating(double t_s, std::vector<StackEvent>& events);
+
+    CrawlerStackConfig config_;
+    localization::SurfaceParticleFilter filter_;
+    std::vector<Eigen::Vector3d> waypoints_;
+    std::vector<std::vector<control::PathSegment>> legs_;
+    std::vector<control::PathSegment> intended_;
+    std::vector<std::size_t> leg_begins_;
+    std::size_t leg_ = 0;
+    std::optional<control::SegmentFollower> follower_;
+    control::MissionState state_ = control::MissionState::kIdle;
+    std::optional<double> last_wheel_s_;
+    /// The gyro's turn-on bias (IMU frame), once calibrated; the running sum until then.
+    std::optional<Eigen::Vector3d> gyro_bias_radps_;
+    Eigen::Vector3d gyro_sum_radps_ = Eigen::Vector3d::Zero();
+    std::size_t gyro_samples_ = 0;
+    std::optional<double> started_s_;
+    double start_s_ = 0.0;
+    bool wheels_lost_ = false;
+    std::vector<std::string> rejecting_;
+    std::size_t inputs_rejected_ = 0;
+    std::vector<StackEvent> pending_;
+};
+
+}  // namespace scantling::mission

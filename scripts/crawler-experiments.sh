@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# Issue 15 item 6: the crawler's rectangle missions of SPEC §6 in closed loop
+# (scenarios/missions/crawler/): the storage tank's shell (6 x 2 m), the flat 5 x 2 m plate
+# with UWB, the 2 x 1 m plate on IMU and wheels only, and the real DTC hull's side (needs
+# ../shared/data; skipped with a message without it). Prints one table row per run from its
+# summary.json: cross-track error (mean, max; truth to the intended transects), the share of
+# the rectangle within half a swath of the true path, the PF's error against the truth,
+# mission time and the real-time factor.
+#   scripts/crawler-experiments.sh [build-dir] [work-dir]
+# build-dir holds apps/scantling (default build), work-dir the recordings (default
+# /tmp/scantling-crawler). CRAWLER_ONLY="plate_2x1_imu" restricts the runs; CRAWLER_SEED picks
+# the seed (default: the scenarios').
+set -euo pipefail
+root="$(cd "$(dirname "$0")/.." && pwd)"
+build="${1:-build}"
+work="${2:-/tmp/scantling-crawler}"
+only="${CRAWLER_ONLY:-storage_tank_rectangle plate_5x2_rectangle plate_2x1_imu dtc_hull_rectangle}"
+cli="$build/apps/scantling"
+[[ -x "$cli" ]] || { echo "crawler-experiments: $cli not found: build $build first" >&2; exit 1; }
+mkdir -p "$work"
+seed_args=()
+[[ -n "${CRAWLER_SEED:-}" ]] && seed_args=(--seed "$CRAWLER_SEED")
+mesh="$root/../shared/data/meshes/dtc-container-ship-hull-model-scale.stl"
+
+printf '| run | completed | transects | cross-track mean (m) | max (m) | coverage (%%) | PF error RMS (m) | max (m) | heading RMS (°) | time (s) | real time |\n'
+printf '|---|---|---|---|---|---|---|---|---|---|---|\n'
+for run in $only; do
+  if [[ "$run" == dtc_hull_rectangle && ! -f "$mesh" ]]; then
+    echo "crawler-experiments: $run skipped: $mesh is absent (../shared/data)"
+    continue
+  fi
+  out="$work/$run"
+  "$cli" mission "$root/scenarios/missions/crawler/$run.yaml" --out "$out" --force --no-progress \
+    "${seed_args[@]}" > "$out.txt"
+  python3 - "$out/mission/summary.json" "$run" <<'PY'
+import json, math, sys
+s = json.load(open(sys.argv[1]))
+print(f"| {sys.argv[2]} | {'yes' if s['completed'] else 'no'} | {s['transects']} | "
+      f"{s['cross_track_mean_m']:.3f} | {s['cross_track_max_m']:.3f} | {100 * s['coverage']:.1f} | "
+      f"{s['position_error_rms_m']:.3f} | {s['position_error_max_m']:.3f} | "
+      f"{math.degrees(s['yaw_error_rms_rad']):.2f} | {s['mission_time_s']:.1f} | "
+      f"{s['real_time_factor']:.0f}x |")
+PY
+done
+echo "crawler-experiments: recordings in $work"

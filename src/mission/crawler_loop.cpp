@@ -1,0 +1,338 @@
+// The crawler's rectangle mission in closed loop (crawler_mission.hpp).
+#include <scantling/mission/crawler_mission.hpp>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <variant>
+
+#include <scantling/core/error.hpp>
+#include <scantling/core/kdtree.hpp>
+#include <scantling/io/recording.hpp>
+#include <scantling/sim/recording_writer.hpp>
+#include <scantling/sim/simulator.hpp>
+
+#include "detail/loop_support.hpp"
+
+namespace scantling::mission {
+namespace {
+
+using detail::MissionFiles;
+using detail::StageClock;
+
+constexpr double kCoverageCellM = 0.02;
+constexpr double kDenseStepM = 0.002;  ///< the intended path, densified for distances
+
+/// Points every `step_m` along `segments` (begin of each, then inside).
+std::vector<Eigen::Vector3d> densify(std::span<const control::PathSegment> segments,
+                                     double step_m) {
+    std::vector<Eigen::Vector3d> points;
+    for (const control::PathSegment& s : segments) {
+        const Eigen::Vector3d d = s.end_world_m - s.begin_world_m;
+        const int n = std::max(1, static_cast<int>(std::ceil(d.norm() / step_m)));
+        for (int i = 0; i < n; ++i) points.push_back(s.begin_world_m + d * (double(i) / n));
+    }
+    if (!segments.empty()) points.push_back(segments.back().end_world_m);
+    return points;
+}
+
+/// Cell centres of the rectangle laid on the surface: columns walked across from the start,
+/// rows walked up from each column's foot, the walking direction transported as the crawler
+/// transports its heading.
+std::vector<Eigen::Vector3d> rectangle_cells(const planning::SurfaceRectangleRequest& r,
+                                             const SurfaceProjector& surface) {
+    const auto march = [&](SurfacePoint p, Eigen::Vector3d d, double length_m) {
+        std::vector<Eigen::Vector3d> marks;
+        double next_mark_m = kCoverageCellM / 2.0;
+        for (double s = 0.0; s < length_m; s += kCoverageCellM / 2.0) {
+            d = (d - d.dot(p.normal) * p.normal).normalized();
+            p = surface.project(p.point + d * (kCoverageCellM / 2.0));
+            if (s + kCoverageCellM / 2.0 >= next_mark_m - 1e-9) {
+                marks.push_back(p.point);
+                next_mark_m += kCoverageCellM;
+            }
+        }
+        return marks;
+    };
+    const SurfacePoint start = surface.project(r.start_world_m);
+    const Eigen::Vector3d up = (r.up_world - r.up_world.dot(start.normal) * start.normal);
+    const Eigen::Vector3d across = up.normalized().cross(start.normal);
+    std::vector<Eigen::Vector3d> cells;
+    for (const Eigen::Vector3d& foot : march(start, across, r.width_m)) {
+        const SurfacePoint f = surface.project(foot);
+        const std::vector<Eigen::Vector3d> column = march(f, r.up_world, r.height_m);
+        cells.insert(cells.end(), column.begin(), column.end());
+    }
+    return cells;
+}
+
+/// The figures measured on the truth while the loop runs.
+class CrawlerMetrics {
+  public:
+    CrawlerMetrics(const CrawlerStack& stack, const CrawlerMissionScenario& scenario)
+        : rectangle_legs_begin_(stack.num_legs() > 1 ? stack.leg_begin(1)
+                                                     : stack.intended_path().size()),
+          intended_(densify(std::span(stack.intended_path()).subspan(rectangle_legs_begin_),
+                            kDenseStepM)),
+          swath_m_(scenario.swath_width_m) {}
+
+    void add_tick(const sim::MotionState& truth, const CrawlerStack& stack,
+                  const CrawlerStackCommand& command, double t_s) {
+        const Eigen::Vector3d p = truth.T_world_body.translation();
+        const auto estimate = stack.estimate();
+        const double error_m = (estimate.T_world_body.translation() - p).norm();
+        error_sq_sum_ += error_m * error_m;
+        error_max_m_ = std::max(error_max_m_, error_m);
+        const Eigen::Vector3d x_true = truth.T_world_body.linear().col(0);
+        const Eigen::Vector3d x_est = estimate.T_world_body.linear().col(0);
+        const double yaw_error = std::atan2(x_true.cross(x_est).norm(), x_true.dot(x_est));
+        yaw_sq_sum_ += yaw_error * yaw_error;
+        ++ticks_;
+        if (previous_p_) path_length_m_ += (p - *previous_p_).norm();
+        previous_p_ = p;
+        if (command.state == control::MissionState::kRunning) {
+            if (!started_s_) started_s_ = t_s;
+            end_s_ = t_s;
+        }
+        const bool on_rectangle =
+            command.state == control::MissionState::kRunning && command.leg >= 1;
+        if (!on_rectangle) return;
+        on_rectangle_points_.push_back(p);
+        if (!intended_tree_) intended_tree_.emplace(intended_);
+        const auto nearest = intended_tree_->nearest(p);
+        if (nearest) {
+            const double distance_m = std::sqrt(nearest->distance_sq_m2);
+            cross_sum_m_ += distance_m;
+            cross_max_m_ = std::max(cross_max_m_, distance_m);
+            ++cross_samples_;
+        }
+    }
+
+    CrawlerMissionResult result(const CrawlerMissionScenario& scenario,
+                                const SurfaceProjector& surface) const {
+        CrawlerMissionResult r;
+        r.mission_time_s = started_s_ ? end_s_ - *started_s_ : 0.0;
+        r.cross_track_samples = cross_samples_;
+        r.cross_track_mean_m = cross_samples_ > 0 ? cross_sum_m_ / cross_samples_ : 0.0;
+        r.cross_track_max_m = cross_max_m_;
+        r.position_error_rms_m = ticks_ > 0 ? std::sqrt(error_sq_sum_ / ticks_) : 0.0;
+        r.position_error_max_m = error_max_m_;
+        r.yaw_error_rms_rad = ticks_ > 0 ? std::sqrt(yaw_sq_sum_ / ticks_) : 0.0;
+        r.path_length_m = path_length_m_;
+        r.coverage = coverage(scenario, surface);
+        return r;
+    }
+
+  private:
+    double coverage(const CrawlerMissionScenario& scenario, const SurfaceProjector& surface) const {
+        const std::vector<Eigen::Vector3d> cells = rectangle_cells(scenario.rectangle, surface);
+        if (cells.empty() || on_rectangle_points_.empty()) return 0.0;
+        const KdTree path(on_rectangle_points_);
+        std::size_t covered = 0;
+        for (const Eigen::Vector3d& c : cells) {
+            const auto nearest = path.nearest(c);
+            if (nearest && nearest->distance_sq_m2 <= swath_m_ * swath_m_ / 4.0) ++covered;
+        }
+        return static_cast<double>(covered) / static_cast<double>(cells.size());
+    }
+
+    std::size_t rectangle_legs_begin_;
+    std::vector<Eigen::Vector3d> intended_;
+    std::optional<KdTree> intended_tree_;
+    double swath_m_;
+    std::vector<Eigen::Vector3d> on_rectangle_points_;
+    double cross_sum_m_ = 0.0;
+    double cross_max_m_ = 0.0;
+    std::size_t cross_samples_ = 0;
+    double error_sq_sum_ = 0.0;
+    double error_max_m_ = 0.0;
+    double yaw_sq_sum_ = 0.0;
+    std::size_t ticks_ = 0;
+    double path_length_m_ = 0.0;
+    std::optional<Eigen::Vector3d> previous_p_;
+    std::optional<double> started_s_;
+    double end_s_ = 0.0;
+};
+
+/// One reading to the stack, as the io type a recording gives.
+void feed(CrawlerStack& stack, const sim::SensorReading& reading) {
+    if (const auto* imu = std::get_if<sim::ImuSample>(&reading.data)) {
+        stack.add_imu({imu->stamp_s, imu->specific_force_mps2, imu->angular_rate_radps});
+    } else if (const auto* wheel = std::get_if<sim::WheelOdometrySample>(&reading.data)) {
+        stack.add_wheel_odometry(
+            {wheel->stamp_s, wheel->forward_speed_mps, wheel->yaw_rate_radps, wheel->slipping});
+    } else if (const auto* uwb = std::get_if<sim::UwbMeasurement>(&reading.data)) {
+        for (const sim::UwbRange& r : uwb->ranges) {
+            stack.add_uwb({uwb->stamp_s, r.anchor_id, r.range_m, r.valid, r.line_of_sight});
+        }
+    }
+}
+
+void deliver(CrawlerStack& stack, const sim::SensorReading& reading, const FaultInjector& faults,
+             sim::RecordingWriter& writer, LoopTiming& timing) {
+    if (const SensorFault* fault = faults.fault_of(reading)) {
+        if (fault->kind == FaultKind::kNan) feed(stack, poisoned(reading));
+        return;
+    }
+    {
+        StageClock clock(timing.record_s);
+        writer.add(reading);
+    }
+    StageClock clock(timing.estimators_s);
+    feed(stack, reading);
+}
+
+/// The PF estimate as the estimates.csv record of the other loops.
+localization::DroneState as_state(const CrawlerStack& stack) {
+    const auto e = stack.estimate();
+    localization::DroneState s;
+    s.stamp_s = e.stamp_s;
+    s.T_odom_body = e.T_world_body;
+    s.covariance.topLeftCorner<3, 3>() = e.position_covariance_m2;
+    s.covariance(5, 5) = e.yaw_variance_rad2;
+    return s;
+}
+
+void log_command(MissionFiles& files, const CrawlerStackCommand& c, const sim::MotionState& truth,
+                 double t_s) {
+    // commands.csv holds world velocities: the forward speed along the true heading is what
+    // the wheels were asked for (no slip), the turn rate about the normal as yaw_rate.
+    const Eigen::Vector3d v = truth.T_world_body.linear().col(0) * c.forward_mps;
+    files.commands.push_back({.stamp_s = t_s,
+                              .v_world_mps = v,
+                              .yaw_rate_radps = c.yaw_rate_radps,
+                              .v_requested_world_mps = v,
+                              .limited = false});
+    for (const StackEvent& e : c.events) files.add_event(e.t_s, e.type, e.json);
+}
+
+bool ended(control::MissionState state) {
+    return state == control::MissionState::kCompleted || state == control::MissionState::kAborted;
+}
+
+std::string summary_json(const CrawlerMissionScenario& m, const CrawlerMissionResult& r) {
+    nlohmann::ordered_json j;
+    j["scenario"] = m.name;
+    j["final_state"] = std::string(control::to_string(r.final_state));
+    j["completed"] = r.completed;
+    j["mission_time_s"] = r.mission_time_s;
+    j["transects"] = r.transects;
+    j["step_m"] = r.step_m;
+    j["waypoints_reached"] = r.waypoints_reached;
+    j["cross_track_mean_m"] = r.cross_track_mean_m;
+    j["cross_track_max_m"] = r.cross_track_max_m;
+    j["coverage"] = r.coverage;
+    j["position_error_rms_m"] = r.position_error_rms_m;
+    j["position_error_max_m"] = r.position_error_max_m;
+    j["yaw_error_rms_rad"] = r.yaw_error_rms_rad;
+    j["path_length_m"] = r.path_length_m;
+    j["uwb_applied"] = r.uwb_applied;
+    j["uwb_refused"] = r.uwb_refused;
+    j["inputs_rejected"] = r.inputs_rejected;
+    j["events"] = r.events;
+    j["wall_time_s"] = r.wall_time_s;
+    j["real_time_factor"] = r.real_time_factor;
+    return j.dump(2);
+}
+
+/// The intended path for mission/intended_path.csv: every leg's end.
+planning::WaypointPath intended_waypoints(const CrawlerStack& stack) {
+    planning::WaypointPath path;
+    for (const Eigen::Vector3d& p : stack.waypoints()) {
+        path.waypoints.push_back({.p_world_m = p, .yaw_rad = std::nullopt});
+    }
+    return path;
+}
+
+}  // namespace
+
+CrawlerMissionResult run_crawler_mission(const CrawlerMissionScenario& scenario,
+                                         const std::string& directory,
+                                         const MissionRunOptions& options) {
+    const auto wall_start = std::chrono::steady_clock::now();
+    scenario.validate();
+    const sim::Scenario& simulation = scenario.simulation;
+    sim::Simulator sim(simulation, scenario.T_world_body_start());
+    const std::unique_ptr<SurfaceProjector> surface = sim::crawler_surface(simulation, sim.world());
+    const planning::SurfaceRectanglePlan plan =
+        planning::plan_surface_rectangle(scenario.rectangle, *surface, scenario.stack.walk);
+    CrawlerStack stack(scenario.stack, *surface, plan.waypoints_world_m, sim.truth().T_world_body,
+                       Rng(simulation.seed).split(200).next_u64());
+    sim::RecordingWriter writer(directory, options.overwrite);
+    CrawlerMetrics metrics(stack, scenario);
+    control::OperatorScript script(scenario.operator_script);
+    MissionFiles files;
+    LoopTiming timing;
+    FaultInjector faults(scenario.faults, detail::sensor_types(simulation));
+    std::optional<double> ended_at_s;
+    double next_progress_s = 0.0;
+    control::MissionState state = control::MissionState::kIdle;
+    std::size_t reached = 0;
+
+    sim::SimStep step = sim.start();
+    while (true) {
+        detail::throw_if_stop_requested(options, sim, directory);
+        const double t_s = sim.now_s();
+        {
+            StageClock clock(timing.record_s);
+            writer.add_ground_truth(t_s, step.truth.T_world_body);
+        }
+        detail::log_faults(files, faults, t_s);
+        for (const sim::SensorReading& r : step.readings) deliver(stack, r, faults, writer, timing);
+        std::vector<control::OperatorCommand> commands = detail::operator_commands_due(script, sim);
+        detail::log_operator(files, commands, t_s);
+        const CrawlerStackCommand command = [&] {
+            StageClock clock(timing.command_s);
+            return stack.command(t_s, commands);
+        }();
+        state = command.state;
+        for (const StackEvent& e : command.events) reached += e.type == "waypoint_reached";
+        {
+            StageClock clock(timing.log_s);
+            log_command(files, command, step.truth, t_s);
+            files.estimates.push_back(detail::estimate_record(as_state(stack), t_s, true));
+            metrics.add_tick(step.truth, stack, command, t_s);
+        }
+        if (options.progress && t_s >= next_progress_s) {
+            options.progress({t_s, simulation.duration_s, command.state});
+            next_progress_s += 1.0;
+        }
+        if (ended(command.state) && !ended_at_s) ended_at_s = t_s;
+        if (ended_at_s && t_s >= *ended_at_s + scenario.linger_s) break;
+        if (t_s >= simulation.duration_s - 1e-9) {
+            files.add_event(t_s, "timeout",
+                            fmt::format(R"({{"state":"{}"}})", control::to_string(command.state)));
+            break;
+        }
+        StageClock clock(timing.simulate_s);
+        step = sim.step(
+            {.yaw_rate_radps = command.yaw_rate_radps, .forward_mps = command.forward_mps});
+    }
+    CrawlerMissionResult result = metrics.result(scenario, *surface);
+    result.final_state = state;
+    result.completed = state == control::MissionState::kCompleted;
+    result.transects = plan.transects;
+    result.step_m = plan.step_m;
+    result.waypoints_reached = reached;
+    result.uwb_applied = stack.filter().counters().uwb_applied;
+    result.uwb_refused = stack.filter().counters().uwb_refused;
+    result.inputs_rejected = stack.inputs_rejected();
+    result.timing = timing;
+    result.directory = directory;
+    result.sim_time_s = sim.now_s();
+    result.events = files.num_events;
+    result.wall_time_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+    result.real_time_factor = result.sim_time_s / std::max(result.wall_time_s, 1e-9);
+    writer.finish(detail::recording_summary(scenario.name, scenario.description, simulation, sim));
+    detail::write_mission_files(writer, files, intended_waypoints(stack),
+                                summary_json(scenario, result));
+    writer.write_timing(result.wall_time_s, result.real_time_factor);
+    writer.commit();
+    return result;
+}
+
+}  // namespace scantling::mission

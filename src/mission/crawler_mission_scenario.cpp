@@ -1,0 +1,248 @@
+// Crawler mission scenario files (crawler_mission.hpp).
+#include <scantling/mission/crawler_mission.hpp>
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include <scantling/control/config_yaml.hpp>
+#include <scantling/core/config_checks.hpp>
+#include <scantling/core/error.hpp>
+#include <scantling/io/config_node.hpp>
+#include <scantling/io/config_schema.hpp>
+#include <scantling/sim/scenario_schema.hpp>
+
+#include "detail/config_nodes.hpp"
+#include "detail/mission_schemas.hpp"
+
+namespace scantling::mission {
+namespace {
+
+using detail::required;
+using detail::without;
+
+/// `mission:` of a crawler document.
+struct RectangleMission {
+    std::string type;
+    Eigen::Vector3d start_m = Eigen::Vector3d::Zero();
+    double width_m = 1.0;
+    double height_m = 1.0;
+    double max_step_m = 0.4;
+    Eigen::Vector3d up = Eigen::Vector3d::UnitZ();
+    double swath_width_m = 0.5;
+};
+
+struct CrawlerDocument {
+    std::string name;
+    std::string description;
+    sim::PoseSpec start{};
+    double linger_s = 1.0;
+    CrawlerStackConfig stack{};
+    std::vector<SensorFault> faults;
+};
+
+const io::ConfigSchema<control::SegmentFollowerConfig>& follower_schema() {
+    using S = control::SegmentFollowerConfig;
+    static const io::ConfigSchema<S> schema = [] {
+        io::ConfigSchema<S> s;
+        s.field("k_y_per_m_s", &S::k_y_per_m_s, "turn rate per metre of cross-track", io::kPositive)
+            .field("k_yaw_per_s", &S::k_yaw_per_s, "turn rate per radian of yaw", io::kPositive)
+            .field("v_ref_mps", &S::v_ref_mps, "forward speed when not turning", io::kPositive)
+            .field("omega0_radps", &S::omega0_radps, "turn rate at which v falls to v_ref/e",
+                   io::kPositive)
+            .field("max_omega_radps", &S::max_omega_radps, "turn-rate clamp", io::kPositive);
+        return s;
+    }();
+    return schema;
+}
+
+const io::ConfigSchema<planning::SurfaceWalkConfig>& walk_schema() {
+    using S = planning::SurfaceWalkConfig;
+    static const io::ConfigSchema<S> schema = [] {
+        io::ConfigSchema<S> s;
+        s.field("march_step_m", &S::march_step_m, "a walking step on the surface, m", io::kPositive)
+            .field("segment_length_m", &S::segment_length_m, "the follower's segments, m",
+                   io::kPositive)
+            .field("max_start_distance_m", &S::max_start_distance_m,
+                   "how far off the surface a start may be, m", io::kPositive);
+        return s;
+    }();
+    return schema;
+}
+
+const io::ConfigSchema<localization::SurfaceParticleFilterConfig>& particle_filter_schema() {
+    using S = localization::SurfaceParticleFilterConfig;
+    static const io::ConfigSchema<S> schema = [] {
+        io::ConfigSchema<S> s;
+        s.field("num_particles", &S::num_particles, "N")
+            .field("initial_position_sigma_m", &S::initial_position_sigma_m, "m", io::kNonNegative)
+            .field("initial_yaw_sigma_rad", &S::initial_yaw_sigma_rad, "rad", io::kNonNegative)
+            .field("slip_mean", &S::slip_mean, "longitudinal slip fraction, mean")
+            .field("slip_sigma", &S::slip_sigma, "its stationary 1σ", io::kNonNegative)
+            .field("slip_correlation_time_s", &S::slip_correlation_time_s, "s", io::kPositive)
+            .field("lateral_slip_sigma", &S::lateral_slip_sigma, "lateral / forward speed, 1σ",
+                   io::kNonNegative)
+            .field("wheel_yaw_slip_sigma", &S::wheel_yaw_slip_sigma,
+                   "relative turn-rate error by the wheels, 1σ", io::kNonNegative)
+            .field("gyro_yaw_random_walk_rad_per_sqrt_s", &S::gyro_yaw_random_walk_rad_per_sqrt_s,
+                   "heading random walk with the gyro, rad/√s", io::kNonNegative)
+            .field("wheel_yaw_random_walk_rad_per_sqrt_s", &S::wheel_yaw_random_walk_rad_per_sqrt_s,
+                   "heading random walk by the wheels alone, rad/√s", io::kNonNegative)
+            .field("uwb_range_sigma_m", &S::uwb_range_sigma_m, "line-of-sight 1σ, m", io::kPositive)
+            .field("nlos_probability", &S::nlos_probability, "share of long NLOS ranges")
+            .field("nlos_max_excess_m", &S::nlos_max_excess_m, "NLOS excess path limit, m",
+                   io::kPositive)
+            .field("outlier_probability", &S::outlier_probability, "share of wild ranges")
+            .field("uwb_max_range_m", &S::uwb_max_range_m, "the outliers' range, m", io::kPositive)
+            .field("resample_threshold_fraction", &S::resample_threshold_fraction,
+                   "resample below this share of N as effective sample size", io::kUnitInterval)
+            .field("max_wheel_gap_s", &S::max_wheel_gap_s, "a longer wheel interval is a gap, s",
+                   io::kPositive);
+        return s;
+    }();
+    return schema;
+}
+
+const io::ConfigSchema<CrawlerStackConfig>& stack_schema() {
+    using S = CrawlerStackConfig;
+    static const io::ConfigSchema<S> schema = [] {
+        io::ConfigSchema<S> s;
+        s.section("particle_filter", &S::particle_filter, particle_filter_schema())
+            .section("follower", &S::follower, follower_schema())
+            .section("walk", &S::walk, walk_schema())
+            .field("max_wheel_age_s", &S::max_wheel_age_s, "longer without wheels: stop, s",
+                   io::kPositive)
+            .field("gyro_calibration_s", &S::gyro_calibration_s,
+                   "standing still at the start to take the gyro's bias, s (0: off)",
+                   io::kNonNegative);
+        return s;
+    }();
+    return schema;
+}
+
+const io::ConfigSchema<CrawlerDocument>& document_schema() {
+    using S = CrawlerDocument;
+    static const io::ConfigSchema<S> schema = [] {
+        io::ConfigSchema<S> s;
+        s.field("name", &S::name, "default: the file's stem")
+            .field("description", &S::description)
+            .section("start", &S::start, sim::detail::pose_spec_schema(), "start pose, world")
+            .field("linger_s", &S::linger_s, "simulated after the end, s", io::kNonNegative)
+            .section("stack", &S::stack, stack_schema())
+            .list("faults", &S::faults, detail::fault_schema());
+        return s;
+    }();
+    return schema;
+}
+
+const io::ConfigSchema<RectangleMission>& mission_schema() {
+    using S = RectangleMission;
+    static const io::ConfigSchema<S> schema = [] {
+        io::ConfigSchema<S> s;
+        s.field("type", &S::type, "surface_rectangle")
+            .field("start_m", &S::start_m, "lower-left corner, on the surface, world, m")
+            .field("width_m", &S::width_m, "W, across, m", io::kPositive)
+            .field("height_m", &S::height_m, "H, up, m", io::kPositive)
+            .field("max_step_m", &S::max_step_m, "largest transect spacing, m", io::kPositive)
+            .field("up", &S::up, "the world's up direction")
+            .field("swath_width_m", &S::swath_width_m, "one transect's inspected width, m",
+                   io::kPositive);
+        return s;
+    }();
+    return schema;
+}
+
+/// The robot knows the surveyed UWB anchors, its tag's and its IMU's mounts.
+void calibrate(CrawlerMissionScenario& m) {
+    for (const sim::SensorSpec& sensor : m.simulation.sensors) {
+        if (sensor.type == sim::SensorType::kImu) {
+            m.stack.particle_filter.R_body_imu = sensor.T_body_sensor.to_isometry().linear();
+        }
+        for (const sim::UwbAnchor& anchor : sensor.anchors) {
+            m.stack.particle_filter.uwb_anchors_world_m[anchor.id] = anchor.position_world;
+        }
+        if (sensor.type == sim::SensorType::kUwb) {
+            m.stack.particle_filter.p_body_uwb_tag_m =
+                sensor.T_body_sensor.to_isometry().translation();
+        }
+    }
+}
+
+CrawlerMissionScenario from_document(const io::ConfigNode& root, const std::string& name) {
+    if (!root.is_map()) io::detail::fail(root, "", "expected a map (a mission scenario)");
+    CrawlerDocument document;
+    document_schema().apply(without(root, {"simulation", "mission", "operator"}), document);
+    RectangleMission mission;
+    const io::ConfigNode& mission_node = required(root, "mission");
+    mission_schema().apply(mission_node, mission, "mission");
+    if (mission.type != "surface_rectangle") {
+        io::detail::fail(
+            mission_node, "mission.type",
+            fmt::format("'{}', expected surface_rectangle for a crawler mission", mission.type));
+    }
+    CrawlerMissionScenario m;
+    m.name = document.name.empty() ? std::filesystem::path(name).stem().string() : document.name;
+    m.description = document.description;
+    m.simulation = sim::scenario_from_node(required(root, "simulation"), "simulation");
+    m.start = document.start;
+    m.linger_s = document.linger_s;
+    m.rectangle = {.start_world_m = mission.start_m,
+                   .width_m = mission.width_m,
+                   .height_m = mission.height_m,
+                   .max_step_m = mission.max_step_m,
+                   .up_world = mission.up};
+    m.swath_width_m = mission.swath_width_m;
+    m.stack = document.stack;
+    m.faults = document.faults;
+    if (const io::ConfigNode* script = root.find("operator")) {
+        m.operator_script = control::operator_script_from_yaml(*script, "operator").commands();
+    }
+    calibrate(m);
+    m.validate();
+    return m;
+}
+
+}  // namespace
+
+void CrawlerMissionScenario::validate() const {
+    simulation.validate("simulation");
+    if (simulation.vehicle.type != sim::VehicleType::kCrawler) {
+        throw ConfigError(
+            "simulation.vehicle.type: a surface_rectangle mission needs the crawler vehicle");
+    }
+    config_checks::require(linger_s >= 0.0 && std::isfinite(linger_s), "", "linger_s", linger_s,
+                           "finite >= 0");
+    config_checks::require_positive(swath_width_m, "mission", "swath_width_m");
+    stack.validate("stack");
+    for (std::size_t i = 0; i < faults.size(); ++i)
+        faults[i].validate(fmt::format("faults[{}]", i));
+}
+
+bool is_crawler_mission_file(const std::string& path) {
+    const io::ConfigNode root = io::parse_yaml_file(path);
+    if (!root.is_map()) return false;
+    const io::ConfigNode* mission = root.find("mission");
+    if (mission == nullptr || !mission->is_map()) return false;
+    const io::ConfigNode* type = mission->find("type");
+    return type != nullptr && type->is_scalar() && type->scalar == "surface_rectangle";
+}
+
+CrawlerMissionScenario load_crawler_mission_scenario(const std::string& path,
+                                                     const std::vector<std::string>& overrides) {
+    io::ConfigNode root = io::parse_yaml_file(path);
+    for (const std::string& assignment : overrides) detail::apply_override(root, assignment);
+    CrawlerMissionScenario m = from_document(root, path);
+    m.simulation.base_directory = std::filesystem::path(path).parent_path().string();
+    if (m.simulation.name.empty()) m.simulation.name = m.name;
+    return m;
+}
+
+CrawlerMissionScenario parse_crawler_mission_scenario(const std::string& yaml_text,
+                                                      const std::string& name) {
+    CrawlerMissionScenario m = from_document(io::parse_yaml_string(yaml_text, name), name);
+    if (m.simulation.name.empty()) m.simulation.name = m.name;
+    return m;
+}
+
+}  // namespace scantling::mission

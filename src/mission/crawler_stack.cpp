@@ -1,0 +1,201 @@
+// The magnetic crawler's stack (crawler_stack.hpp).
+#include <scantling/mission/crawler_stack.hpp>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include <scantling/core/config_checks.hpp>
+#include <scantling/core/error.hpp>
+
+namespace scantling::mission {
+namespace {
+
+using control::MissionState;
+using control::OperatorCommandType;
+
+std::vector<std::vector<control::PathSegment>> lay_legs(
+    const SurfaceProjector& surface, const Eigen::Vector3d& p_start,
+    const std::vector<Eigen::Vector3d>& waypoints, const planning::SurfaceWalkConfig& walk) {
+    std::vector<std::vector<control::PathSegment>> legs;
+    Eigen::Vector3d from = p_start;
+    for (const Eigen::Vector3d& to : waypoints) {
+        legs.push_back(planning::surface_line(surface, from, to, walk));
+        from = to;
+    }
+    return legs;
+}
+
+}  // namespace
+
+void CrawlerStackConfig::validate(std::string_view prefix) const {
+    particle_filter.validate(std::string(prefix) + ".particle_filter");
+    follower.validate(std::string(prefix) + ".follower");
+    walk.validate(std::string(prefix) + ".walk");
+    config_checks::require_positive(max_wheel_age_s, prefix, "max_wheel_age_s");
+    config_checks::require_non_negative(gyro_calibration_s, prefix, "gyro_calibration_s");
+}
+
+CrawlerStack::CrawlerStack(const CrawlerStackConfig& config, const SurfaceProjector& surface,
+                           std::vector<Eigen::Vector3d> waypoints_world_m,
+                           const Eigen::Isometry3d& T_world_body_start, std::uint64_t seed)
+    : config_((config.validate(), config)),
+      filter_(config_.particle_filter, surface, T_world_body_start, seed),
+      waypoints_(std::move(waypoints_world_m)) {
+    if (waypoints_.empty()) throw InputError("crawler stack: a mission needs a waypoint");
+    legs_ = lay_legs(surface, T_world_body_start.translation(), waypoints_, config_.walk);
+    for (const auto& leg : legs_) {
+        leg_begins_.push_back(intended_.size());
+        intended_.insert(intended_.end(), leg.begin(), leg.end());
+    }
+}
+
+bool CrawlerStack::screen(bool finite, const std::string& sensor, double stamp_s) {
+    const auto it = std::find(rejecting_.begin(), rejecting_.end(), sensor);
+    if (finite) {
+        if (it != rejecting_.end()) rejecting_.erase(it);
+        return true;
+    }
+    ++inputs_rejected_;
+    if (it == rejecting_.end()) {
+        rejecting_.push_back(sensor);
+        pending_.push_back({std::isfinite(stamp_s) ? stamp_s : start_s_, "input_rejected",
+                            fmt::format(R"({{"sensor":"{}","reason":"a sample with )"
+                                        R"(non-finite values was dropped before the filter"}})",
+                                        sensor)});
+    }
+    return false;
+}
+
+void CrawlerStack::add_imu(const io::ImuRecord& sample) {
+    const bool finite = std::isfinite(sample.stamp_s) && sample.specific_force_mps2.allFinite() &&
+                        sample.angular_rate_radps.allFinite();
+    if (!screen(finite, "imu", sample.stamp_s)) return;
+    if (!gyro_bias_radps_) {
+        // Standing still: the rate is the bias (no turn is given before the calibration ends).
+        if (started_s_ && config_.gyro_calibration_s > 0.0) {
+            gyro_sum_radps_ += sample.angular_rate_radps;
+            ++gyro_samples_;
+        }
+        return;
+    }
+    io::ImuRecord corrected = sample;
+    corrected.angular_rate_radps -= *gyro_bias_radps_;
+    filter_.add_imu(corrected);
+}
+
+bool CrawlerStack::calibrating(double t_s, std::vector<StackEvent>& events) {
+    if (gyro_bias_radps_) return false;
+    if (!started_s_) started_s_ = t_s;
+    if (t_s - *started_s_ < config_.gyro_calibration_s) return true;
+    gyro_bias_radps_ = gyro_samples_ > 0 ? Eigen::Vector3d(gyro_sum_radps_ / gyro_samples_)
+                                         : Eigen::Vector3d::Zero();
+    const Eigen::Vector3d& b = *gyro_bias_radps_;
+    events.push_back({t_s, "gyro_calibrated",
+                      fmt::format(R"({{"bias_radps":[{:.6f},{:.6f},{:.6f}],"samples":{}}})", b.x(),
+                                  b.y(), b.z(), gyro_samples_)});
+    return false;
+}
+
+void CrawlerStack::add_wheel_odometry(const io::WheelOdometryRecord& sample) {
+    const bool finite = std::isfinite(sample.stamp_s) && std::isfinite(sample.forward_speed_mps) &&
+                        std::isfinite(sample.yaw_rate_radps);
+    if (!screen(finite, "wheel_odometry", sample.stamp_s)) return;
+    filter_.add_wheel_odometry(sample);
+    last_wheel_s_ = sample.stamp_s;
+}
+
+void CrawlerStack::add_uwb(const io::UwbRecord& range) {
+    // An invalid record (no reply from that anchor) carries no range: it is not a bad sample.
+    if (!range.valid) return;
+    const bool finite = std::isfinite(range.stamp_s) && std::isfinite(range.range_m);
+    if (screen(finite, "uwb", range.stamp_s)) filter_.update_uwb(range);
+}
+
+void CrawlerStack::change_state(MissionState to, const std::string& reason, double t_s,
+                                std::vector<StackEvent>& events) {
+    events.push_back({t_s, "state_changed",
+                      fmt::format(R"({{"from":"{}","to":"{}","reason":"{}"}})",
+                                  control::to_string(state_), control::to_string(to), reason)});
+    state_ = to;
+}
+
+void CrawlerStack::apply(const control::OperatorCommand& command, double t_s,
+                         std::vector<StackEvent>& events) {
+    const auto refuse = [&](const std::string& why) {
+        events.push_back({t_s, "command_refused",
+                          fmt::format(R"({{"command":"{}","reason":"{}"}})",
+                                      control::to_string(command.type), why)});
+    };
+    switch (command.type) {
+        case OperatorCommandType::kStart:
+            if (state_ != MissionState::kIdle) return refuse("already started");
+            return change_state(MissionState::kRunning, fmt::format("start: {} legs", legs_.size()),
+                                t_s, events);
+        case OperatorCommandType::kPause:
+            if (state_ != MissionState::kRunning) return refuse("not running");
+            return change_state(MissionState::kPaused, "pause: standing still", t_s, events);
+        case OperatorCommandType::kResume:
+            if (state_ != MissionState::kPaused) return refuse("not paused");
+            return change_state(MissionState::kRunning, "resume", t_s, events);
+        case OperatorCommandType::kAbort:
+            if (state_ == MissionState::kAborted) return refuse("already aborted");
+            return change_state(MissionState::kAborted, "abort: standing still", t_s, events);
+        default:
+            return refuse("the crawler takes start, pause, resume and abort");
+    }
+}
+
+void CrawlerStack::watch_wheels(double t_s, std::vector<StackEvent>& events) {
+    const double age_s = t_s - last_wheel_s_.value_or(start_s_);
+    const bool lost = age_s > config_.max_wheel_age_s;
+    if (lost == wheels_lost_) return;
+    wheels_lost_ = lost;
+    events.push_back(
+        {t_s, lost ? "sensor_lost" : "sensor_restored",
+         fmt::format(R"({{"sensor":"wheel_odometry","reason":"no sample for {:.3f} s"}})", age_s)});
+}
+
+void CrawlerStack::follow(CrawlerStackCommand& out, double t_s) {
+    const Eigen::Isometry3d T_world_body = filter_.estimate().T_world_body;
+    while (leg_ < legs_.size()) {
+        if (!follower_) follower_.emplace(legs_[leg_], config_.follower);
+        const control::FollowerCommand c = follower_->update(T_world_body);
+        if (!c.done) {
+            out.forward_mps = c.v_mps;
+            out.yaw_rate_radps = c.omega_radps;
+            out.error = c.error;
+            break;
+        }
+        out.events.push_back(
+            {t_s, "waypoint_reached",
+             fmt::format(R"({{"waypoint":{},"reason":"waypoint {} reached"}})", leg_, leg_)});
+        follower_.reset();
+        ++leg_;
+    }
+    if (leg_ >= legs_.size()) {
+        change_state(MissionState::kCompleted,
+                     fmt::format("all {} waypoints reached", waypoints_.size()), t_s, out.events);
+    }
+}
+
+CrawlerStackCommand CrawlerStack::command(
+    double t_s, std::span<const control::OperatorCommand> operator_commands) {
+    CrawlerStackCommand out;
+    out.events = std::move(pending_);
+    pending_.clear();
+    for (const control::OperatorCommand& c : operator_commands) apply(c, t_s, out.events);
+    watch_wheels(t_s, out.events);
+    const bool moving_allowed = state_ == MissionState::kRunning && !wheels_lost_;
+    if (moving_allowed && !calibrating(t_s, out.events)) follow(out, t_s);
+    if (!std::isfinite(out.forward_mps) || !std::isfinite(out.yaw_rate_radps)) {
+        out.forward_mps = 0.0;  // the follower's inputs are screened; never pass a NaN on
+        out.yaw_rate_radps = 0.0;
+    }
+    out.state = state_;
+    out.leg = leg_;
+    return out;
+}
+
+}  // namespace scantling::mission
