@@ -115,7 +115,11 @@ const io::ConfigSchema<CrawlerStackConfig>& stack_schema() {
                    io::kPositive)
             .field("gyro_calibration_s", &S::gyro_calibration_s,
                    "standing still at the start to take the gyro's bias, s (0: off)",
-                   io::kNonNegative);
+                   io::kNonNegative)
+            .field("max_uwb_age_s", &S::max_uwb_age_s, "no UWB range this long: an event, s",
+                   io::kPositive)
+            .field("max_position_sigma_m", &S::max_position_sigma_m,
+                   "a larger position σ stops the crawler, m", io::kPositive);
         return s;
     }();
     return schema;

@@ -35,6 +35,8 @@ void CrawlerStackConfig::validate(std::string_view prefix) const {
     walk.validate(std::string(prefix) + ".walk");
     config_checks::require_positive(max_wheel_age_s, prefix, "max_wheel_age_s");
     config_checks::require_non_negative(gyro_calibration_s, prefix, "gyro_calibration_s");
+    config_checks::require_positive(max_uwb_age_s, prefix, "max_uwb_age_s");
+    config_checks::require_positive(max_position_sigma_m, prefix, "max_position_sigma_m");
 }
 
 CrawlerStack::CrawlerStack(const CrawlerStackConfig& config, const SurfaceProjector& surface,
@@ -110,7 +112,36 @@ void CrawlerStack::add_uwb(const io::UwbRecord& range) {
     // An invalid record (no reply from that anchor) carries no range: it is not a bad sample.
     if (!range.valid) return;
     const bool finite = std::isfinite(range.stamp_s) && std::isfinite(range.range_m);
-    if (screen(finite, "uwb", range.stamp_s)) filter_.update_uwb(range);
+    if (!screen(finite, "uwb", range.stamp_s)) return;
+    const localization::UpdateResult result = filter_.update_uwb(range);
+    if (result.status == localization::UpdateStatus::kApplied) last_uwb_s_ = range.stamp_s;
+}
+
+void CrawlerStack::watch_uwb(double t_s, std::vector<StackEvent>& events) {
+    if (config_.particle_filter.uwb_anchors_world_m.empty()) return;
+    const double age_s = t_s - last_uwb_s_.value_or(start_s_);
+    const bool lost = age_s > config_.max_uwb_age_s;
+    if (lost == uwb_lost_) return;
+    uwb_lost_ = lost;
+    events.push_back({t_s, lost ? "sensor_lost" : "sensor_restored",
+                      lost
+                          ? fmt::format(R"({{"sensor":"uwb","reason":"no range for {:.1f} s: dead )"
+                                        R"(reckoning on the IMU and the wheels"}})",
+                                        age_s)
+                          : std::string(R"({"sensor":"uwb","reason":"ranges again"})")});
+}
+
+bool CrawlerStack::estimate_usable(double t_s, std::vector<StackEvent>& events) {
+    const double sigma_m = std::sqrt(filter_.estimate().position_covariance_m2.trace());
+    const bool invalid = !(sigma_m <= config_.max_position_sigma_m);
+    if (invalid != estimate_invalid_) {
+        estimate_invalid_ = invalid;
+        events.push_back({t_s, invalid ? "estimate_invalid" : "estimate_valid",
+                          fmt::format(R"({{"sigma_m":{:.3f},"reason":"{}"}})", sigma_m,
+                                      invalid ? "position too uncertain: standing still"
+                                              : "position certain again: going on")});
+    }
+    return !invalid;
 }
 
 void CrawlerStack::change_state(MissionState to, const std::string& reason, double t_s,
@@ -187,7 +218,9 @@ CrawlerStackCommand CrawlerStack::command(
     pending_.clear();
     for (const control::OperatorCommand& c : operator_commands) apply(c, t_s, out.events);
     watch_wheels(t_s, out.events);
-    const bool moving_allowed = state_ == MissionState::kRunning && !wheels_lost_;
+    watch_uwb(t_s, out.events);
+    const bool usable = estimate_usable(t_s, out.events);
+    const bool moving_allowed = state_ == MissionState::kRunning && !wheels_lost_ && usable;
     if (moving_allowed && !calibrating(t_s, out.events)) follow(out, t_s);
     if (!std::isfinite(out.forward_mps) || !std::isfinite(out.yaw_rate_radps)) {
         out.forward_mps = 0.0;  // the follower's inputs are screened; never pass a NaN on

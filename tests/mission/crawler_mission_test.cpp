@@ -143,6 +143,34 @@ TEST(CrawlerMission, WheelFaultsStopTheCrawlerAndNansAreDropped) {
     EXPECT_LT(r.result.cross_track_mean_m, 0.03);
 }
 
+TEST(CrawlerMission, WithoutUwbItReportsAndDeadReckons) {
+    // The UWB link down from 20 s to 45 s: reported once, restored once; the filter
+    // dead-reckons on the gyro and the wheels and the rectangle is still driven on its line.
+    const CrawlerRun r = fly(kPlate +
+                                 "faults: [{sensor: uwb, kind: dropout, start_s: 20.0, "
+                                 "duration_s: 25.0}]\n",
+                             "no_uwb");
+    EXPECT_EQ(count_events(r, "sensor_lost", "uwb"), 1u);
+    EXPECT_EQ(count_events(r, "sensor_restored", "uwb"), 1u);
+    EXPECT_EQ(count_events(r, "estimate_invalid"), 0u);
+    EXPECT_TRUE(r.result.completed);
+    EXPECT_LT(r.result.cross_track_mean_m, 0.03);
+}
+
+TEST(CrawlerMission, AnUncertainEstimateStopsTheCrawler) {
+    // A limit under anything the filter reaches (UWB brings it to about 1 cm): it never moves,
+    // and says why.
+    std::string text = kPlate;
+    text.replace(text.find("duration_s: 200"), std::string("duration_s: 200").size(),
+                 "duration_s: 20");
+    const CrawlerRun r = fly(text + "stack: {max_position_sigma_m: 0.002}\n", "uncertain");
+    EXPECT_GE(count_events(r, "estimate_invalid"), 1u);
+    EXPECT_FALSE(r.result.completed);
+    for (const io::CommandRecord& c : r.log.commands) {
+        ASSERT_EQ(c.v_world_mps.norm(), 0.0) << c.stamp_s;
+    }
+}
+
 TEST(CrawlerMission, RefusesImpossibleRequests) {
     auto with = [](const std::string& from, const std::string& to) {
         std::string text = kPlate;

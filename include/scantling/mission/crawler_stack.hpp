@@ -20,7 +20,9 @@
 /// with a non-finite value is dropped before the filter with an `input_rejected` event (once
 /// per episode); the wheels silent for longer than `max_wheel_age_s` stop the crawler (a
 /// `sensor_lost` event; it goes on when they are back): without them the PF is blind to its
-/// own motion. A command is never NaN.
+/// own motion. Anchors silent for max_uwb_age_s are a `sensor_lost` event (the filter
+/// dead-reckons), and a position σ above max_position_sigma_m stops the crawler until it is
+/// back (`estimate_invalid`). A command is never NaN.
 ///
 /// Frames: world; body x forward, z the surface normal. Thread-safety: not thread-safe, one
 /// stack per vehicle. Deterministic for a seed and an input sequence.
@@ -55,6 +57,14 @@ struct CrawlerStackConfig {
     /// measured on the tank rectangle, its heading otherwise left by 111° with a 0.005 rad/√s
     /// diffusion (docs/results.md).
     double gyro_calibration_s = 2.0;
+    /// With UWB anchors configured, no valid range for this long is a `sensor_lost` event, s,
+    /// > 0: the filter dead-reckons on the IMU and the wheels meanwhile (no anchor in range,
+    /// the link down).
+    double max_uwb_age_s = 2.0;
+    /// The crawler stands still while the filter's position σ (√ of the covariance's trace)
+    /// exceeds this, m, > 0, with an `estimate_invalid` event (`estimate_valid` when it is
+    /// back): dead reckoning grows it by a few centimetres per metre driven.
+    double max_position_sigma_m = 0.5;
 
     /// Throws ConfigError naming "<prefix>.<field>".
     void validate(std::string_view prefix = "stack") const;
@@ -106,6 +116,9 @@ class CrawlerStack {
     void change_state(control::MissionState to, const std::string& reason, double t_s,
                       std::vector<StackEvent>& events);
     void watch_wheels(double t_s, std::vector<StackEvent>& events);
+    void watch_uwb(double t_s, std::vector<StackEvent>& events);
+    /// False (with the events of a change) while the position σ is above the limit.
+    bool estimate_usable(double t_s, std::vector<StackEvent>& events);
     void follow(CrawlerStackCommand& out, double t_s);
     /// True while the start's gyro calibration runs (standing still); ends it when due.
     bool calibrating(double t_s, std::vector<StackEvent>& events);
@@ -127,6 +140,9 @@ class CrawlerStack {
     std::optional<double> started_s_;
     double start_s_ = 0.0;
     bool wheels_lost_ = false;
+    std::optional<double> last_uwb_s_;
+    bool uwb_lost_ = false;
+    bool estimate_invalid_ = false;
     std::vector<std::string> rejecting_;
     std::size_t inputs_rejected_ = 0;
     std::vector<StackEvent> pending_;
