@@ -73,12 +73,13 @@ ASAN_CXX_FLAGS ?= -O1 -g0 -DNDEBUG
 # Likewise two whole-recording runs of the localiser (the column's 3-DoF tracking over 80 s and
 # the VIO-velocity input over the mock-up flight, twice): their code runs under the sanitizers
 # in ColumnRegistrationSim.RegistersFrames* and the VelocityOdometry unit tests.
-# And the closed-loop flights of 7 to 16 s (ClosedLoop.*, ClosedLoopSafety.*, three of
+# And the closed-loop flights of 7 to 16 s (ClosedLoop.*, ClosedLoopSafety.*, four of
 # ClosedLoopFaults.*: LiODOM + EKFs in the loop): the loop, the fault injection and the stack's
 # input screening run under the sanitizers in ClosedLoopFaults.NanSamplesAreDroppedAndReported
 # (6 s), the scenario parsing and the mission log in the other mission tests. The ROV's survey
-# loops (RovHullSurvey.*) all run under the sanitizers: about 10 s each (2026-11-28).
-ASAN_SKIP_TESTS ?= ClosedLoop\.|ClosedLoopSafety\.|ClosedLoopFaults\.(LidarDropout|ShortImuGap|LongImuGap)|SteinIcp\.(CovarianceDescribesTheError|ModeRecoversKnownPose|SymmetricRoomGivesTwo|SpreadAlongCorridor)|CliRegister\.SteinReportsParticle|ColumnRegistrationSim\.LocalizerWithColumnTracking|LocalizerTest\.VioVelocityAlone
+# loops (RovHullSurvey.*) and the crawler's (CrawlerMission.*: the particle filter, the
+# follower, no LiDAR) all run under the sanitizers.
+ASAN_SKIP_TESTS ?= ClosedLoop\.|ClosedLoopSafety\.|ClosedLoopFaults\.(LidarDropout|ShortImuGap|LongImuGap|AnOperatorCommandEndsTheCoast)|SteinIcp\.(CovarianceDescribesTheError|ModeRecoversKnownPose|SymmetricRoomGivesTwo|SpreadAlongCorridor)|CliRegister\.SteinReportsParticle|ColumnRegistrationSim\.LocalizerWithColumnTracking|LocalizerTest\.VioVelocityAlone
 # Also set while building: gtest_discover_tests runs each test executable after linking it.
 SANITIZER_ENV = ASAN_OPTIONS=$(ASAN_OPTIONS_DEFAULT) UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
 	LSAN_OPTIONS=suppressions=$(CURDIR)/scripts/sanitizers/lsan.supp:print_suppressions=0

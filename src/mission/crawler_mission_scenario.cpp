@@ -224,29 +224,17 @@ void CrawlerMissionScenario::validate() const {
 }
 
 bool is_crawler_mission_file(const std::string& path) {
-    const io::ConfigNode root = io::parse_yaml_file(path);
-    if (!root.is_map()) return false;
-    const io::ConfigNode* mission = root.find("mission");
-    if (mission == nullptr || !mission->is_map()) return false;
-    const io::ConfigNode* type = mission->find("type");
-    return type != nullptr && type->is_scalar() && type->scalar == "surface_rectangle";
+    return detail::mission_type_of(path) == "surface_rectangle";
 }
 
 CrawlerMissionScenario load_crawler_mission_scenario(const std::string& path,
                                                      const std::vector<std::string>& overrides) {
-    io::ConfigNode root = io::parse_yaml_file(path);
-    for (const std::string& assignment : overrides) detail::apply_override(root, assignment);
-    CrawlerMissionScenario m = from_document(root, path);
-    m.simulation.base_directory = std::filesystem::path(path).parent_path().string();
-    if (m.simulation.name.empty()) m.simulation.name = m.name;
-    return m;
+    return detail::load_scenario(path, overrides, from_document);
 }
 
 CrawlerMissionScenario parse_crawler_mission_scenario(const std::string& yaml_text,
                                                       const std::string& name) {
-    CrawlerMissionScenario m = from_document(io::parse_yaml_string(yaml_text, name), name);
-    if (m.simulation.name.empty()) m.simulation.name = m.name;
-    return m;
+    return detail::parse_scenario(yaml_text, name, from_document);
 }
 
 }  // namespace scantling::mission

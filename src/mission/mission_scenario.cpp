@@ -214,18 +214,11 @@ void MissionScenario::validate() const {
 
 MissionScenario load_mission_scenario(const std::string& path,
                                       const std::vector<std::string>& overrides) {
-    io::ConfigNode root = io::parse_yaml_file(path);
-    for (const std::string& assignment : overrides) apply_override(root, assignment);
-    MissionScenario m = from_document(root, path);
-    m.simulation.base_directory = std::filesystem::path(path).parent_path().string();
-    if (m.simulation.name.empty()) m.simulation.name = m.name;
-    return m;
+    return detail::load_scenario(path, overrides, from_document);
 }
 
 MissionScenario parse_mission_scenario(const std::string& yaml_text, const std::string& name) {
-    MissionScenario m = from_document(io::parse_yaml_string(yaml_text, name), name);
-    if (m.simulation.name.empty()) m.simulation.name = m.name;
-    return m;
+    return detail::parse_scenario(yaml_text, name, from_document);
 }
 
 }  // namespace scantling::mission

@@ -117,8 +117,7 @@ std::vector<std::size_t> collect(const std::vector<Eigen::Vector3d>& points,
 /// unregularised g to ~1.5 /m in the tests: its second sheet 0.7 m over the plate.
 std::optional<QuadricSurface> refit(const std::vector<Eigen::Vector3d>& points,
                                     const std::vector<std::size_t>& inliers,
-                                    const QuadricSurface& previous,
-                                    const SurfaceObstaclesConfig& config) {
+                                    const QuadricSurface& previous) {
     Matrix7d H = Matrix7d::Zero();
     Vector7d b = Vector7d::Zero();
     for (const std::size_t i : inliers) {
@@ -141,7 +140,7 @@ std::pair<QuadricSurface, std::vector<std::size_t>> refine(
     const SurfaceObstaclesConfig& config) {
     std::vector<std::size_t> inliers = collect(points, surface, config.inlier_threshold_m);
     for (int round = 0; round < kMaxRefitRounds && inliers.size() >= kSampleSize; ++round) {
-        const auto next = refit(points, inliers, surface, config);
+        const auto next = refit(points, inliers, surface);
         if (!next) break;
         surface = *next;
         auto next_inliers = collect(points, surface, config.inlier_threshold_m);

@@ -58,27 +58,24 @@ void require_extent(double min_m, double max_m, std::string_view prefix, std::st
 
 void require_grid(const SurfaceGrid& grid) {
     const auto n = static_cast<std::size_t>(std::max(grid.cells_per_side, 0));
-    if (grid.cells_per_side < 0 || grid.cells.size() != n * n) {
+    const bool geometry_ok = n == 0 || (std::isfinite(grid.cell_size_m) && grid.cell_size_m > 0.0 &&
+                                        grid.origin_xy_m.allFinite());
+    if (grid.cells_per_side < 0 || grid.cells.size() != n * n || !geometry_ok) {
         throw InputError(fmt::format(
-            "texture_map.end_stop: obstacles has {} cells for cells_per_side = {}, expected its "
-            "square",
-            grid.cells.size(), grid.cells_per_side));
-    }
-    if (n > 0 && !(std::isfinite(grid.cell_size_m) && grid.cell_size_m > 0.0 &&
-                   grid.origin_xy_m.allFinite())) {
-        throw InputError(fmt::format(
-            "texture_map.end_stop: obstacles.cell_size_m = {} with origin ({}, {}), expected a "
-            "finite cell size > 0 and a finite origin",
-            grid.cell_size_m, grid.origin_xy_m.x(), grid.origin_xy_m.y()));
+            "texture_map.end_stop: obstacles has {} cells, cells_per_side = {}, cell_size_m = {}, "
+            "origin ({}, {}); expected cells_per_side² cells, a finite cell size > 0 and origin",
+            grid.cells.size(), grid.cells_per_side, grid.cell_size_m, grid.origin_xy_m.x(),
+            grid.origin_xy_m.y()));
     }
 }
 
 std::string json_matrix(const Eigen::Matrix4d& M) {
-    std::array<std::string, 4> rows;
+    std::string rows;
     for (int r = 0; r < 4; ++r) {
-        rows[r] = fmt::format("[{}, {}, {}, {}]", M(r, 0), M(r, 1), M(r, 2), M(r, 3));
+        rows += fmt::format("{}[{}, {}, {}, {}]", r == 0 ? "" : ", ", M(r, 0), M(r, 1), M(r, 2),
+                            M(r, 3));
     }
-    return fmt::format("[{}, {}, {}, {}]", rows[0], rows[1], rows[2], rows[3]);
+    return "[" + rows + "]";
 }
 
 std::string json_rgb(const Rgb8& c) { return fmt::format("[{}, {}, {}]", c[0], c[1], c[2]); }
@@ -117,10 +114,13 @@ TextureMap::TextureMap(const TextureMapConfig& config) : config_(config) {
         cells_along(config_.max_x_m - config_.min_x_m, config_.cell_size_m));
     rows_ = static_cast<std::size_t>(
         cells_along(config_.max_y_m - config_.min_y_m, config_.cell_size_m));
-    live_.assign(columns_ * rows_, config_.unobserved_color);
-    live_state_.assign(columns_ * rows_, kUnseen);
-    clean_ = live_;
-    clean_state_ = live_state_;
+    live_ = empty_layer();
+    clean_ = empty_layer();
+}
+
+TextureMap::Layer TextureMap::empty_layer() const {
+    return {std::vector<Rgb8>(columns_ * rows_, config_.unobserved_color),
+            std::vector<std::uint8_t>(columns_ * rows_, kUnseen)};
 }
 
 TextureMap::View TextureMap::make_view(const io::RgbImage& image,
@@ -187,9 +187,7 @@ TextureMap::CellBox TextureMap::cells_to_test(const View& view) const {
     return clip(lo.x(), lo.y(), hi.x(), hi.y());
 }
 
-std::size_t TextureMap::paint(const View& view, std::vector<Rgb8>& colors,
-                              std::vector<std::uint8_t>& states,
-                              std::vector<float>* ranges_m) const {
+std::size_t TextureMap::paint(const View& view, Layer& layer, std::vector<float>* ranges_m) const {
     const CellBox box = cells_to_test(view);
     const int width = view.intrinsics.width;
     std::size_t painted = 0;
@@ -209,8 +207,8 @@ std::size_t TextureMap::paint(const View& view, std::vector<Rgb8>& colors,
             // project() keeps it in [−0.5, size − 0.5), hence in the image.
             const auto u = static_cast<std::size_t>(std::floor(pixel->x() + 0.5));
             const auto v = static_cast<std::size_t>(std::floor(pixel->y() + 0.5));
-            colors[i] = view.image->pixels[v * static_cast<std::size_t>(width) + u];
-            states[i] = kSeen;
+            layer.colors[i] = view.image->pixels[v * static_cast<std::size_t>(width) + u];
+            layer.states[i] = kSeen;
             ++painted;
         }
     }
@@ -221,12 +219,11 @@ std::size_t TextureMap::add_image(const io::RgbImage& image, const PinholeIntrin
                                   const Eigen::Isometry3d& T_map_camera) {
     const View view = make_view(image, intrinsics, T_map_camera, "add_image");
     ++num_images_;
-    return paint(view, live_, live_state_, nullptr);
+    return paint(view, live_, nullptr);
 }
 
 void TextureMap::begin_stop() {
-    staged_.assign(columns_ * rows_, config_.unobserved_color);
-    staged_state_.assign(columns_ * rows_, kUnseen);
+    staged_ = empty_layer();
     staged_range_m_.assign(columns_ * rows_, std::numeric_limits<float>::infinity());
     in_stop_ = true;
 }
@@ -236,7 +233,7 @@ std::size_t TextureMap::add_stop_image(const io::RgbImage& image,
                                        const Eigen::Isometry3d& T_map_camera) {
     if (!in_stop_) throw InputError("texture_map.add_stop_image: no stop begun (begin_stop)");
     const View view = make_view(image, intrinsics, T_map_camera, "add_stop_image");
-    return paint(view, staged_, staged_state_, &staged_range_m_);
+    return paint(view, staged_, &staged_range_m_);
 }
 
 bool TextureMap::is_obstacle(SurfaceLabel label) const {
@@ -270,8 +267,8 @@ void TextureMap::paint_obstacles(const SurfaceGrid& grid, const Eigen::Isometry3
         for (std::size_t ix = box.ix0; ix < box.ix1; ++ix) {
             const Eigen::Vector3d p_body = T_body_map * cell_centre_map(ix, iy);
             if (!is_obstacle(grid.label_at(p_body.head<2>()))) continue;
-            staged_[index(ix, iy)] = config_.obstacle_color;
-            staged_state_[index(ix, iy)] |= kObstacle;
+            staged_.colors[index(ix, iy)] = config_.obstacle_color;
+            staged_.states[index(ix, iy)] |= kObstacle;
         }
     }
 }
@@ -281,10 +278,7 @@ void TextureMap::end_stop(const SurfaceGrid& obstacles, const Eigen::Isometry3d&
     require_rigid_input(T_map_body, "end_stop", "T_map_body");
     require_grid(obstacles);
     paint_obstacles(obstacles, T_map_body);
-    clean_ = std::move(staged_);
-    clean_state_ = std::move(staged_state_);
-    staged_ = {};
-    staged_state_ = {};
+    clean_ = std::exchange(staged_, {});
     staged_range_m_ = {};
     in_stop_ = false;
     ++num_stops_;
@@ -295,32 +289,21 @@ Eigen::Vector3d TextureMap::cell_centre_map(std::size_t ix, std::size_t iy) cons
             config_.min_y_m + (static_cast<double>(iy) + 0.5) * config_.cell_size_m, 0.0};
 }
 
-bool TextureMap::live_observed(std::size_t ix, std::size_t iy) const {
-    return (live_state_[index(ix, iy)] & kSeen) != 0;
-}
-
-bool TextureMap::clean_observed(std::size_t ix, std::size_t iy) const {
-    return (clean_state_[index(ix, iy)] & kSeen) != 0;
-}
-
-TextureLayerStats TextureMap::live_stats() const {
-    return {static_cast<std::size_t>(std::count(live_state_.begin(), live_state_.end(), kSeen)), 0};
-}
-
-TextureLayerStats TextureMap::clean_stats() const {
+TextureLayerStats TextureMap::stats(const Layer& layer) {
     TextureLayerStats stats;
-    for (const std::uint8_t state : clean_state_) {
+    for (const std::uint8_t state : layer.states) {
         stats.observed_cells += (state & kSeen) != 0 ? 1 : 0;
         stats.obstacle_cells += (state & kObstacle) != 0 ? 1 : 0;
     }
     return stats;
 }
 
-io::RgbImage TextureMap::north_up(const std::vector<Rgb8>& colors) const {
+io::RgbImage TextureMap::north_up(const Layer& layer) const {
     io::RgbImage image{static_cast<int>(columns_), static_cast<int>(rows_), {}};
-    image.pixels.reserve(colors.size());
+    image.pixels.reserve(layer.colors.size());
     for (std::size_t v = 0; v < rows_; ++v) {
-        const auto row = colors.begin() + static_cast<std::ptrdiff_t>((rows_ - 1 - v) * columns_);
+        const auto row =
+            layer.colors.begin() + static_cast<std::ptrdiff_t>((rows_ - 1 - v) * columns_);
         image.pixels.insert(image.pixels.end(), row, row + static_cast<std::ptrdiff_t>(columns_));
     }
     return image;
@@ -332,9 +315,11 @@ io::RgbImage TextureMap::clean_image() const { return north_up(clean_); }
 std::string TextureMap::metadata_json() const {
     const TextureLayerStats live = live_stats();
     const TextureLayerStats clean = clean_stats();
+    // max_*_m: the grid's extent in whole cells, to 12 digits, since min + n · cell adds
+    // rounding noise (−0.5 + 160 · 0.005 = 0.30000000000000004).
     return fmt::format(
         "{{\n  \"cell_size_m\": {},\n  \"columns\": {},\n  \"rows\": {},\n"
-        "  \"min_x_m\": {},\n  \"min_y_m\": {},\n  \"max_x_m\": {},\n  \"max_y_m\": {},\n"
+        "  \"min_x_m\": {},\n  \"min_y_m\": {},\n  \"max_x_m\": {:.12g},\n  \"max_y_m\": {:.12g},\n"
         "  \"pixel_to_cell\": \"pixel (u, v) is cell (u, rows - 1 - v); x right, y up\",\n"
         "  \"T_world_map\": {},\n  \"max_range_m\": {},\n"
         "  \"unobserved_rgb\": {},\n  \"obstacle_rgb\": {},\n"

@@ -129,12 +129,16 @@ class TextureMap {
     /// Centre of cell (ix, iy), map frame (z = 0).
     Eigen::Vector3d cell_centre_map(std::size_t ix, std::size_t iy) const;
     /// Colours and observed flags of cell (ix, iy); index iy · columns() + ix.
-    Rgb8 live_color(std::size_t ix, std::size_t iy) const { return live_[index(ix, iy)]; }
-    Rgb8 clean_color(std::size_t ix, std::size_t iy) const { return clean_[index(ix, iy)]; }
-    bool live_observed(std::size_t ix, std::size_t iy) const;
-    bool clean_observed(std::size_t ix, std::size_t iy) const;
-    TextureLayerStats live_stats() const;
-    TextureLayerStats clean_stats() const;
+    Rgb8 live_color(std::size_t ix, std::size_t iy) const { return live_.colors[index(ix, iy)]; }
+    Rgb8 clean_color(std::size_t ix, std::size_t iy) const { return clean_.colors[index(ix, iy)]; }
+    bool live_observed(std::size_t ix, std::size_t iy) const {
+        return (live_.states[index(ix, iy)] & kSeen) != 0;
+    }
+    bool clean_observed(std::size_t ix, std::size_t iy) const {
+        return (clean_.states[index(ix, iy)] & kSeen) != 0;
+    }
+    TextureLayerStats live_stats() const { return stats(live_); }  ///< O(cells)
+    TextureLayerStats clean_stats() const { return stats(clean_); }
     std::size_t num_images() const { return num_images_; }  ///< add_image calls
     std::size_t num_stops() const { return num_stops_; }    ///< completed stops
 
@@ -143,30 +147,32 @@ class TextureMap {
     struct CellBox {
         std::size_t ix0 = 0, iy0 = 0, ix1 = 0, iy1 = 0;  // half-open [ix0, ix1) × [iy0, iy1)
     };
-    enum CellState : std::uint8_t { kUnseen = 0, kSeen = 1, kObstacle = 2 };
+    enum CellState : std::uint8_t { kUnseen = 0, kSeen = 1, kObstacle = 2 };  // bits
+    struct Layer {
+        std::vector<Rgb8> colors;          // index iy · columns + ix
+        std::vector<std::uint8_t> states;  // CellState bits
+    };
 
+    Layer empty_layer() const;
     View make_view(const io::RgbImage& image, const PinholeIntrinsics& intrinsics,
                    const Eigen::Isometry3d& T_map_camera, std::string_view caller) const;
     CellBox cells_to_test(const View& view) const;
     CellBox clip(double x0, double y0, double x1, double y1) const;
-    std::size_t paint(const View& view, std::vector<Rgb8>& colors,
-                      std::vector<std::uint8_t>& states, std::vector<float>* ranges_m) const;
+    std::size_t paint(const View& view, Layer& layer, std::vector<float>* ranges_m) const;
     void paint_obstacles(const SurfaceGrid& obstacles, const Eigen::Isometry3d& T_map_body);
     bool is_obstacle(SurfaceLabel label) const;
     std::size_t index(std::size_t ix, std::size_t iy) const { return iy * columns_ + ix; }
-    io::RgbImage north_up(const std::vector<Rgb8>& colors) const;
+    static TextureLayerStats stats(const Layer& layer);
+    io::RgbImage north_up(const Layer& layer) const;
     std::string metadata_json() const;
 
     TextureMapConfig config_;
     std::size_t columns_ = 0;
     std::size_t rows_ = 0;
-    std::vector<Rgb8> live_;
-    std::vector<std::uint8_t> live_state_;
-    std::vector<Rgb8> clean_;
-    std::vector<std::uint8_t> clean_state_;
-    std::vector<Rgb8> staged_;  // the stop in progress
-    std::vector<std::uint8_t> staged_state_;
-    std::vector<float> staged_range_m_;
+    Layer live_;
+    Layer clean_;
+    Layer staged_;                       // the stop in progress
+    std::vector<float> staged_range_m_;  // its nearest view's range per cell
     bool in_stop_ = false;
     std::size_t num_images_ = 0;
     std::size_t num_stops_ = 0;

@@ -61,4 +61,12 @@ void apply_override(io::ConfigNode& root, const std::string& assignment) {
     *node = io::parse_yaml_string(assignment.substr(eq + 1), "--set " + key);
 }
 
+std::string mission_type_of(const std::string& path) {
+    const io::ConfigNode root = io::parse_yaml_file(path);
+    const io::ConfigNode* mission = root.is_map() ? root.find("mission") : nullptr;
+    const io::ConfigNode* type =
+        mission != nullptr && mission->is_map() ? mission->find("type") : nullptr;
+    return type != nullptr && type->is_scalar() ? type->scalar : std::string();
+}
+
 }  // namespace scantling::mission::detail
