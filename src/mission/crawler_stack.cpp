@@ -93,6 +93,7 @@ bool CrawlerStack::calibrating(double t_s, std::vector<StackEvent>& events) {
     if (t_s - *started_s_ < config_.gyro_calibration_s) return true;
     gyro_bias_radps_ = gyro_samples_ > 0 ? Eigen::Vector3d(gyro_sum_radps_ / gyro_samples_)
                                          : Eigen::Vector3d::Zero();
+    if (config_.gyro_calibration_s <= 0.0) return false;  // off: no bias taken, nothing to say
     const Eigen::Vector3d& b = *gyro_bias_radps_;
     events.push_back({t_s, "gyro_calibrated",
                       fmt::format(R"({{"bias_radps":[{:.6f},{:.6f},{:.6f}],"samples":{}}})", b.x(),

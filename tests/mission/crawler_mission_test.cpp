@@ -171,6 +171,25 @@ TEST(CrawlerMission, AnUncertainEstimateStopsTheCrawler) {
     }
 }
 
+TEST(CrawlerMission, TheGyroCalibrationKeepsTheHeadingWithoutUwb) {
+    // No UWB anchors: the filter dead-reckons on the gyro and the wheels. The simulated MEMS
+    // gyro's turn-on bias (σ 0.5°/s) turns the heading unless it is taken standing still.
+    std::string text = kPlate;
+    const std::size_t uwb = text.find("    - type: uwb");
+    text.erase(uwb, text.find("  duration_s") - uwb);
+    const CrawlerRun calibrated = fly(text, "gyro_on");
+    const CrawlerRun raw = fly(text + "stack: {gyro_calibration_s: 0}\n", "gyro_off");
+    EXPECT_EQ(count_events(calibrated, "gyro_calibrated"), 1u);
+    EXPECT_EQ(count_events(raw, "gyro_calibrated"), 0u);
+    EXPECT_EQ(calibrated.result.uwb_applied, 0u);
+    std::printf("no UWB: heading rms %.2f deg calibrated, %.2f deg raw; PF rms %.3f / %.3f m\n",
+                calibrated.result.yaw_error_rms_rad * 180.0 / M_PI,
+                raw.result.yaw_error_rms_rad * 180.0 / M_PI, calibrated.result.position_error_rms_m,
+                raw.result.position_error_rms_m);
+    EXPECT_LT(calibrated.result.yaw_error_rms_rad, 0.5 * raw.result.yaw_error_rms_rad);
+    EXPECT_LT(calibrated.result.cross_track_mean_m, 0.03);
+}
+
 TEST(CrawlerMission, RefusesImpossibleRequests) {
     auto with = [](const std::string& from, const std::string& to) {
         std::string text = kPlate;
