@@ -43,15 +43,13 @@ void feed(DroneStack& stack, const sim::SensorReading& reading, detail::LoopMetr
           LoopTiming& timing) {
     StageClock clock(is_frame(reading) ? timing.odometry_s : timing.estimators_s);
     if (const auto* imu = std::get_if<sim::ImuSample>(&reading.data)) {
-        stack.add_imu({imu->stamp_s, imu->specific_force_mps2, imu->angular_rate_radps});
+        stack.add_imu(detail::imu_record(*imu));
     } else if (const auto* range = std::get_if<sim::RangeMeasurement>(&reading.data)) {
         stack.add_range({range->stamp_s, range->valid, range->range_m});
     } else if (const auto* baro = std::get_if<sim::BarometerSample>(&reading.data)) {
         stack.add_barometer({baro->stamp_s, baro->altitude_m});
     } else if (const auto* uwb = std::get_if<sim::UwbMeasurement>(&reading.data)) {
-        for (const sim::UwbRange& r : uwb->ranges) {
-            stack.add_uwb({uwb->stamp_s, r.anchor_id, r.range_m, r.valid, r.line_of_sight});
-        }
+        for (const io::UwbRecord& record : detail::uwb_records(*uwb)) stack.add_uwb(record);
     } else if (const auto* lidar = std::get_if<sim::LidarReading>(&reading.data)) {
         metrics.add_odometry(stack.add_sweep(lidar->sweep, reading.stamp_s));
     }
@@ -97,15 +95,10 @@ void log_command(MissionFiles& files, const StackCommand& c, double t_s) {
 void deliver(const sim::SensorReading& reading, const FaultInjector& faults,
              sim::RecordingWriter& writer, DroneStack& stack, detail::LoopMetrics& metrics,
              LoopTiming& timing) {
-    if (const SensorFault* fault = faults.fault_of(reading)) {
-        if (fault->kind == FaultKind::kNan) feed(stack, poisoned(reading), metrics, timing);
-        return;
-    }
-    {
-        StageClock clock(timing.record_s);
-        writer.add(reading);
-    }
-    feed(stack, reading, metrics, timing);
+    const bool recorded =
+        detail::deliver(reading, faults, writer, timing.record_s,
+                        [&](const sim::SensorReading& r) { feed(stack, r, metrics, timing); });
+    if (!recorded) return;
     if (const auto* lidar = std::get_if<sim::LidarReading>(&reading.data)) {
         metrics.add_sweep(lidar->sweep);
     }

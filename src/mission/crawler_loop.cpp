@@ -160,29 +160,13 @@ class CrawlerMetrics {
 /// One reading to the stack, as the io type a recording gives.
 void feed(CrawlerStack& stack, const sim::SensorReading& reading) {
     if (const auto* imu = std::get_if<sim::ImuSample>(&reading.data)) {
-        stack.add_imu({imu->stamp_s, imu->specific_force_mps2, imu->angular_rate_radps});
+        stack.add_imu(detail::imu_record(*imu));
     } else if (const auto* wheel = std::get_if<sim::WheelOdometrySample>(&reading.data)) {
         stack.add_wheel_odometry(
             {wheel->stamp_s, wheel->forward_speed_mps, wheel->yaw_rate_radps, wheel->slipping});
     } else if (const auto* uwb = std::get_if<sim::UwbMeasurement>(&reading.data)) {
-        for (const sim::UwbRange& r : uwb->ranges) {
-            stack.add_uwb({uwb->stamp_s, r.anchor_id, r.range_m, r.valid, r.line_of_sight});
-        }
+        for (const io::UwbRecord& record : detail::uwb_records(*uwb)) stack.add_uwb(record);
     }
-}
-
-void deliver(CrawlerStack& stack, const sim::SensorReading& reading, const FaultInjector& faults,
-             sim::RecordingWriter& writer, LoopTiming& timing) {
-    if (const SensorFault* fault = faults.fault_of(reading)) {
-        if (fault->kind == FaultKind::kNan) feed(stack, poisoned(reading));
-        return;
-    }
-    {
-        StageClock clock(timing.record_s);
-        writer.add(reading);
-    }
-    StageClock clock(timing.estimators_s);
-    feed(stack, reading);
 }
 
 /// The PF estimate as the estimates.csv record of the other loops.
@@ -281,7 +265,12 @@ CrawlerMissionResult run_crawler_mission(const CrawlerMissionScenario& scenario,
             writer.add_ground_truth(t_s, step.truth.T_world_body);
         }
         detail::log_faults(files, faults, t_s);
-        for (const sim::SensorReading& r : step.readings) deliver(stack, r, faults, writer, timing);
+        for (const sim::SensorReading& r : step.readings) {
+            detail::deliver(r, faults, writer, timing.record_s, [&](const sim::SensorReading& in) {
+                StageClock clock(timing.estimators_s);
+                feed(stack, in);
+            });
+        }
         std::vector<control::OperatorCommand> commands = detail::operator_commands_due(script, sim);
         detail::log_operator(files, commands, t_s);
         const CrawlerStackCommand command = [&] {

@@ -51,7 +51,7 @@ void feed(RovLoop& loop, const sim::SensorReading& reading) {
     StageClock clock(is_perception(reading) ? loop.timing.odometry_s : loop.timing.estimators_s);
     RovStack& stack = loop.stack;
     if (const auto* imu = std::get_if<sim::ImuSample>(&reading.data)) {
-        stack.add_imu({imu->stamp_s, imu->specific_force_mps2, imu->angular_rate_radps});
+        stack.add_imu(detail::imu_record(*imu));
     } else if (const auto* dvl = std::get_if<sim::DvlSample>(&reading.data)) {
         stack.add_dvl({dvl->stamp_s, dvl->valid, dvl->v_body_mps, dvl->altitude_m});
     } else if (const auto* p = std::get_if<sim::PressureSample>(&reading.data)) {
@@ -61,19 +61,6 @@ void feed(RovLoop& loop, const sim::SensorReading& reading) {
     } else if (const auto* image = std::get_if<sim::ImageReading>(&reading.data)) {
         feed_image(loop, *image);
     }
-}
-
-void deliver(RovLoop& loop, const sim::SensorReading& reading, const FaultInjector& faults,
-             sim::RecordingWriter& writer) {
-    if (const SensorFault* fault = faults.fault_of(reading)) {
-        if (fault->kind == FaultKind::kNan) feed(loop, poisoned(reading));
-        return;
-    }
-    {
-        StageClock clock(loop.timing.record_s);
-        writer.add(reading);
-    }
-    feed(loop, reading);
 }
 
 void log_command(MissionFiles& files, const RovStackCommand& c, double t_s) {
@@ -144,7 +131,10 @@ void deliver_tick(RovLoop& loop, sim::SimStep& step, FaultInjector& faults,
     std::stable_partition(step.readings.begin(), step.readings.end(),
                           [](const sim::SensorReading& r) { return !is_perception(r); });
     detail::log_faults(files, faults, t_s);
-    for (const sim::SensorReading& reading : step.readings) deliver(loop, reading, faults, writer);
+    for (const sim::SensorReading& reading : step.readings) {
+        detail::deliver(reading, faults, writer, loop.timing.record_s,
+                        [&](const sim::SensorReading& r) { feed(loop, r); });
+    }
 }
 
 /// The survey's own figures, kept when the slices are done (before any re-inspection).

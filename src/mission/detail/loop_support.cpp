@@ -31,6 +31,19 @@ void write_text(const std::string& path, const std::string& text) {
     io::write_file_atomically(path, [&](std::ostream& out) { out << text; });
 }
 
+io::ImuRecord imu_record(const sim::ImuSample& sample) {
+    return {sample.stamp_s, sample.specific_force_mps2, sample.angular_rate_radps};
+}
+
+std::vector<io::UwbRecord> uwb_records(const sim::UwbMeasurement& round) {
+    std::vector<io::UwbRecord> records;
+    records.reserve(round.ranges.size());
+    for (const sim::UwbRange& r : round.ranges) {
+        records.push_back({round.stamp_s, r.anchor_id, r.range_m, r.valid, r.line_of_sight});
+    }
+    return records;
+}
+
 io::EstimateRecord estimate_record(const localization::DroneState& estimate, double t_s,
                                    bool valid) {
     const auto& P = estimate.covariance;

@@ -11,6 +11,7 @@
 #include <scantling/control/mission_manager.hpp>
 #include <scantling/control/operator_script.hpp>
 #include <scantling/io/mission_log.hpp>
+#include <scantling/io/recording.hpp>
 #include <scantling/localization/local_ekf.hpp>
 #include <scantling/mission/closed_loop.hpp>
 #include <scantling/mission/fault_injection.hpp>
@@ -52,6 +53,28 @@ struct MissionFiles {
 };
 
 void write_text(const std::string& path, const std::string& text);
+
+/// One reading on its way to the stack: inside a dropout window of `faults` nothing; inside a
+/// NaN window the reading poisoned (fault_injection.hpp), not recorded; otherwise recorded
+/// (its time into `record_s`) and then given to `feed`. True when it was recorded.
+template <class Feed>
+bool deliver(const sim::SensorReading& reading, const FaultInjector& faults,
+             sim::RecordingWriter& writer, double& record_s, Feed&& feed) {
+    if (const SensorFault* fault = faults.fault_of(reading)) {
+        if (fault->kind == FaultKind::kNan) feed(poisoned(reading));
+        return false;
+    }
+    {
+        StageClock clock(record_s);
+        writer.add(reading);
+    }
+    feed(reading);
+    return true;
+}
+
+/// A simulated IMU sample and UWB round as the io records a recording gives.
+io::ImuRecord imu_record(const sim::ImuSample& sample);
+std::vector<io::UwbRecord> uwb_records(const sim::UwbMeasurement& round);
 
 /// One tick's line of mission/estimates.csv: the stack's world estimate and its 1σ.
 io::EstimateRecord estimate_record(const localization::DroneState& estimate, double t_s,
