@@ -47,6 +47,19 @@ TEST(WheelOdometry, DeadReckoningNoiselessSamplesRetracesTheCircle) {
     EXPECT_NEAR(so3_log(T.linear().transpose() * truth.linear()).norm(), 0.0, kExact);
 }
 
+TEST(WheelOdometry, ACrawlersEncodersCountTheWheelsNotTheSlippedMotion) {
+    // The body slides 5 % short of its wheels and turns 10 % more (crawler_dynamics.hpp's
+    // slip): the encoders report the wheels' own speed and turn rate.
+    Rng rng(1);
+    WheelOdometrySimulator odometry(noiseless(WheelOdometryConfig{}), rng);
+    MotionState m = circle_drive(0.0);
+    m.wheel_forward_mps = 0.6 / 0.95;
+    m.wheel_yaw_rate_radps = 0.2 / 1.1;
+    const WheelOdometrySample s = odometry.measure(m, rng);
+    EXPECT_NEAR(s.forward_speed_mps, 0.6 / 0.95, kExact);
+    EXPECT_NEAR(s.yaw_rate_radps, 0.2 / 1.1, kExact);
+}
+
 TEST(WheelOdometry, SlipEventsComeAtTheirRateAndOverstateTheSpeed) {
     WheelOdometryConfig config = noiseless(WheelOdometryConfig{});
     config.slip_event_rate_per_s = 0.1;
