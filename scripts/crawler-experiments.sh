@@ -1,11 +1,11 @@
 #!/usr/bin/env bash
 # Issue 15 item 6: the crawler's rectangle missions of SPEC §6 in closed loop
 # (scenarios/missions/crawler/): the storage tank's shell (6 x 2 m), the flat 5 x 2 m plate
-# with UWB, the 2 x 1 m plate on IMU and wheels only, and the real DTC hull's side (needs
-# ../shared/data; skipped with a message without it). Prints one table row per run from its
-# summary.json: cross-track error (mean, max; truth to the intended transects), the share of
-# the rectangle within half a swath of the true path, the PF's error against the truth,
-# mission time and the real-time factor.
+# with UWB, the 2 x 1 m plate on IMU and wheels only, the real DTC hull's side (needs
+# ../shared/data; skipped with a message without it), and 3 x 0.7 m along the Möbius strip
+# through its twist. Prints one table row per run from its summary.json: cross-track error
+# (mean, max; truth to the intended transects), the share of the rectangle within half a swath
+# of the true path, the PF's error against the truth, mission time and the real-time factor.
 #   scripts/crawler-experiments.sh [build-dir] [work-dir]
 # build-dir holds apps/scantling (default build), work-dir the recordings (default
 # /tmp/scantling-crawler). CRAWLER_ONLY="plate_2x1_imu" restricts the runs; CRAWLER_SEED picks
@@ -14,7 +14,7 @@ set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 build="${1:-build}"
 work="${2:-/tmp/scantling-crawler}"
-only="${CRAWLER_ONLY:-storage_tank_rectangle plate_5x2_rectangle plate_2x1_imu dtc_hull_rectangle}"
+only="${CRAWLER_ONLY:-storage_tank_rectangle plate_5x2_rectangle plate_2x1_imu dtc_hull_rectangle moebius_rectangle}"
 cli="$build/apps/scantling"
 [[ -x "$cli" ]] || { echo "crawler-experiments: $cli not found: build $build first" >&2; exit 1; }
 mkdir -p "$work"

@@ -53,7 +53,13 @@ void MeshSurface::build_grid() {
     origin_ = box.min;
     dims_ = (extent / cell_m_).array().floor().cast<int>() + 1;
     std::vector<std::vector<std::uint32_t>> cells(static_cast<std::size_t>(dims_.prod()));
+    std::size_t kept = 0;
     for (std::size_t i = 0; i < mesh_.triangles.size(); ++i) {
+        // A triangle without area has no normal (triangle_normal is zero): it adds no surface
+        // its neighbours do not have, but as the nearest (ties go to the lowest index) it
+        // handed the crawler a zero normal on the edge it lies on.
+        if (triangle_normal(mesh_, i).isZero()) continue;
+        ++kept;
         const Eigen::Vector3i& t = mesh_.triangles[i];
         const Eigen::Vector3d& a = mesh_.vertices[t[0]];
         const Eigen::Vector3i lo =
@@ -65,6 +71,7 @@ void MeshSurface::build_grid() {
                 for (int x = lo.x(); x <= hi.x(); ++x)
                     cells[cell_index({x, y, z})].push_back(static_cast<std::uint32_t>(i));
     }
+    if (kept == 0) throw InputError("MeshSurface mesh has no triangle with an area");
     cell_start_.assign(1, 0);
     for (const auto& cell : cells) {
         cell_triangles_.insert(cell_triangles_.end(), cell.begin(), cell.end());

@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace scantling {
@@ -33,6 +34,31 @@ PlaneSurface::PlaneSurface(const Eigen::Vector3d& point, const Eigen::Vector3d& 
 
 SurfacePoint PlaneSurface::project(const Eigen::Vector3d& p_world) const {
     return {p_world - normal_ * normal_.dot(p_world - point_), normal_};
+}
+
+PlateSurface::PlateSurface(const Eigen::Vector3d& centre, const Eigen::Vector3d& normal,
+                           const Eigen::Vector3d& x_axis, double half_length_m, double half_width_m)
+    : centre_(centre),
+      normal_(unit_or_throw(normal, "PlateSurface normal")),
+      x_axis_(unit_or_throw(x_axis - x_axis.dot(normal_) * normal_,
+                            "PlateSurface x_axis (its part across the normal)")),
+      y_axis_(normal_.cross(x_axis_)),
+      half_length_m_(half_length_m),
+      half_width_m_(half_width_m) {
+    if (!centre.allFinite()) throw InputError("PlateSurface centre is not finite");
+    if (!(std::isfinite(half_length_m) && half_length_m > 0.0 && std::isfinite(half_width_m) &&
+          half_width_m > 0.0)) {
+        throw InputError(
+            fmt::format("PlateSurface half_length_m = {}, half_width_m = {}, expected finite > 0",
+                        half_length_m, half_width_m));
+    }
+}
+
+SurfacePoint PlateSurface::project(const Eigen::Vector3d& p_world) const {
+    const Eigen::Vector3d d = p_world - centre_;
+    const double a = std::clamp(d.dot(x_axis_), -half_length_m_, half_length_m_);
+    const double b = std::clamp(d.dot(y_axis_), -half_width_m_, half_width_m_);
+    return {centre_ + a * x_axis_ + b * y_axis_, normal_};
 }
 
 CylinderSurface::CylinderSurface(const Eigen::Vector3d& axis_point,

@@ -15,6 +15,7 @@
 #include <scantling/sim/recording_writer.hpp>
 #include <scantling/sim/simulator.hpp>
 
+#include "detail/crawler_stop_metrics.hpp"
 #include "detail/loop_support.hpp"
 
 namespace scantling::mission {
@@ -166,7 +167,42 @@ void feed(CrawlerStack& stack, const sim::SensorReading& reading) {
             {wheel->stamp_s, wheel->forward_speed_mps, wheel->yaw_rate_radps, wheel->slipping});
     } else if (const auto* uwb = std::get_if<sim::UwbMeasurement>(&reading.data)) {
         for (const io::UwbRecord& record : detail::uwb_records(*uwb)) stack.add_uwb(record);
+    } else if (const auto* rosette = std::get_if<sim::RosetteReading>(&reading.data)) {
+        stack.add_lidar_frame(rosette->frame);
     }
+}
+
+/// The recording keeps the LiDAR frames of the stops only: the Mid-70's 100 000 points a second
+/// over a whole mission would be gigabytes, and only the stops' are used.
+bool recorded(const sim::SensorReading& reading, const CrawlerStack& stack) {
+    return !std::holds_alternative<sim::RosetteReading>(reading.data) || stack.mapping();
+}
+
+double share(std::size_t part, std::size_t whole) {
+    return whole > 0 ? static_cast<double>(part) / static_cast<double>(whole) : 0.0;
+}
+
+nlohmann::ordered_json stop_json(const CrawlerStopScores& s) {
+    nlohmann::ordered_json j;
+    j["stops"] = s.stops;
+    j["stops_icp_applied"] = s.stops_icp_applied;
+    j["map_pose_error_rms_m"] = s.map_error_rms_m;
+    j["map_pose_error_max_m"] = s.map_error_max_m;
+    j["pf_at_stops_error_rms_m"] = s.pf_error_rms_m;
+    j["pf_at_stops_error_max_m"] = s.pf_error_max_m;
+    nlohmann::ordered_json classes = nlohmann::ordered_json::object();
+    for (std::size_t k = 0; k < s.classes.size(); ++k) {
+        const CrawlerClassScore& c = s.classes[k];
+        if (c.in_view == 0) continue;
+        classes[std::string(sim::to_string(static_cast<sim::ObstacleKind>(k)))] = {
+            {"in_view", c.in_view}, {"found", c.found}, {"recall", share(c.found, c.in_view)}};
+    }
+    j["recall"] = classes;
+    j["positive_clusters"] = s.positive_clusters;
+    j["positive_precision"] = share(s.positive_right, s.positive_clusters);
+    j["negative_clusters"] = s.negative_clusters;
+    j["negative_precision"] = share(s.negative_right, s.negative_clusters);
+    return j;
 }
 
 /// The PF estimate as the estimates.csv record of the other loops.
@@ -217,6 +253,7 @@ std::string summary_json(const CrawlerMissionScenario& m, const CrawlerMissionRe
     j["uwb_refused"] = r.uwb_refused;
     j["inputs_rejected"] = r.inputs_rejected;
     j["events"] = r.events;
+    if (r.stop_scores.stops > 0) j["stop_and_map"] = stop_json(r.stop_scores);
     j["wall_time_s"] = r.wall_time_s;
     j["real_time_factor"] = r.real_time_factor;
     return j.dump(2);
@@ -241,12 +278,16 @@ CrawlerMissionResult run_crawler_mission(const CrawlerMissionScenario& scenario,
     const sim::Scenario& simulation = scenario.simulation;
     sim::Simulator sim(simulation, scenario.T_world_body_start());
     const std::unique_ptr<SurfaceProjector> surface = sim::crawler_surface(simulation, sim.world());
+    // A start far off the surface would be snapped onto it silently by the simulator.
+    planning::snap_to_surface(*surface, scenario.T_world_body_start().translation(),
+                              scenario.stack.walk.max_start_distance_m, "start.xyz");
     const planning::SurfaceRectanglePlan plan =
         planning::plan_surface_rectangle(scenario.rectangle, *surface, scenario.stack.walk);
     CrawlerStack stack(scenario.stack, *surface, plan.waypoints_world_m, sim.truth().T_world_body,
                        Rng(simulation.seed).split(200).next_u64());
     sim::RecordingWriter writer(directory, options.overwrite);
     CrawlerMetrics metrics(stack, scenario);
+    detail::StopMetrics stop_metrics(sim.world().obstacles);
     control::OperatorScript script(scenario.operator_script);
     MissionFiles files;
     LoopTiming timing;
@@ -266,10 +307,13 @@ CrawlerMissionResult run_crawler_mission(const CrawlerMissionScenario& scenario,
         }
         detail::log_faults(files, faults, t_s);
         for (const sim::SensorReading& r : step.readings) {
-            detail::deliver(r, faults, writer, timing.record_s, [&](const sim::SensorReading& in) {
-                StageClock clock(timing.estimators_s);
-                feed(stack, in);
-            });
+            detail::deliver(
+                r, faults, writer, timing.record_s,
+                [&](const sim::SensorReading& in) {
+                    StageClock clock(timing.estimators_s);
+                    feed(stack, in);
+                },
+                recorded(r, stack));
         }
         std::vector<control::OperatorCommand> commands = detail::operator_commands_due(script, sim);
         detail::log_operator(files, commands, t_s);
@@ -278,6 +322,7 @@ CrawlerMissionResult run_crawler_mission(const CrawlerMissionScenario& scenario,
             return stack.command(t_s, commands);
         }();
         state = command.state;
+        if (command.stop) stop_metrics.add(*command.stop, step.truth.T_world_body);
         for (const StackEvent& e : command.events) reached += e.type == "waypoint_reached";
         {
             StageClock clock(timing.log_s);
@@ -309,6 +354,7 @@ CrawlerMissionResult run_crawler_mission(const CrawlerMissionScenario& scenario,
     result.uwb_applied = stack.filter().counters().uwb_applied;
     result.uwb_refused = stack.filter().counters().uwb_refused;
     result.inputs_rejected = stack.inputs_rejected();
+    result.stop_scores = stop_metrics.scores();
     result.timing = timing;
     result.directory = directory;
     result.sim_time_s = sim.now_s();

@@ -104,6 +104,65 @@ const io::ConfigSchema<localization::SurfaceParticleFilterConfig>& particle_filt
     return schema;
 }
 
+const io::ConfigSchema<perception::SurfaceObstaclesConfig>& obstacles_schema() {
+    using S = perception::SurfaceObstaclesConfig;
+    static const io::ConfigSchema<S> schema = [] {
+        io::ConfigSchema<S> s;
+        s.field("voxel_size_m", &S::voxel_size_m, "voxel grid of the stop cloud, m", io::kPositive)
+            .field("column_median", &S::column_median,
+                   "one point per x-y column at its median height instead of the voxel grid")
+            .field("max_range_m", &S::max_range_m, "farther points are dropped, m", io::kPositive)
+            .field("inlier_threshold_m", &S::inlier_threshold_m, "free within this, m",
+                   io::kPositive)
+            .field("obstacle_threshold_m", &S::obstacle_threshold_m, "an obstacle beyond this, m",
+                   io::kPositive)
+            .field("iterations", &S::iterations, "RANSAC hypotheses")
+            .field("min_radius_m", &S::min_radius_m, "tightest surface curvature radius, m",
+                   io::kPositive)
+            .field("cell_size_m", &S::cell_size_m, "obstacle grid cell, m", io::kPositive)
+            .field("min_obstacle_support", &S::min_obstacle_support,
+                   "obstacle points of one sign needed in the 3x3 cells around one")
+            .field("min_cluster_cells", &S::min_cluster_cells, "smaller clusters are noise, cells")
+            .field("rim_cells", &S::rim_cells, "obstacles this close to unobserved cells: uncertain")
+            .field("enclosed_unknown_is_negative", &S::enclosed_unknown_is_negative,
+                   "an enclosed region without returns is a hole")
+            .field("min_enclosed_unknown_cells", &S::min_enclosed_unknown_cells,
+                   "smallest such region, cells");
+        return s;
+    }();
+    return schema;
+}
+
+const io::ConfigSchema<registration::ConstrainedIcpConfig>& stop_icp_schema() {
+    using S = registration::ConstrainedIcpConfig;
+    static const io::ConfigSchema<S> schema = [] {
+        io::ConfigSchema<S> s;
+        s.field("max_iterations", &S::max_iterations, "SPEC: 25")
+            .field("max_correspondence_distance_m", &S::max_correspondence_distance_m, "m",
+                   io::kPositive)
+            .field("max_rotation_rad", &S::max_rotation_rad, "cap, SPEC: 0.05", io::kPositive)
+            .field("max_translation_m", &S::max_translation_m, "cap, SPEC: 0.35", io::kPositive)
+            .field("degeneracy_threshold", &S::degeneracy_threshold,
+                   "weakest / strongest of x, y, yaw below this: not applied", io::kUnitInterval);
+        return s;
+    }();
+    return schema;
+}
+
+const io::ConfigSchema<perception::StopAndMapConfig>& stop_and_map_schema() {
+    using S = perception::StopAndMapConfig;
+    static const io::ConfigSchema<S> schema = [] {
+        io::ConfigSchema<S> s;
+        s.section("obstacles", &S::obstacles, obstacles_schema())
+            .section("icp", &S::icp, stop_icp_schema())
+            .field("correct_pose", &S::correct_pose, "register consecutive stop clouds")
+            .field("max_points", &S::max_points, "most points accumulated in one stop")
+            .field("min_icp_points", &S::min_icp_points, "obstacle points a registration needs");
+        return s;
+    }();
+    return schema;
+}
+
 const io::ConfigSchema<CrawlerStackConfig>& stack_schema() {
     using S = CrawlerStackConfig;
     static const io::ConfigSchema<S> schema = [] {
@@ -119,7 +178,14 @@ const io::ConfigSchema<CrawlerStackConfig>& stack_schema() {
             .field("max_uwb_age_s", &S::max_uwb_age_s, "no UWB range this long: an event, s",
                    io::kPositive)
             .field("max_position_sigma_m", &S::max_position_sigma_m,
-                   "a larger position σ stops the crawler, m", io::kPositive);
+                   "a larger position σ stops the crawler, m", io::kPositive)
+            .field("stop_spacing_m", &S::stop_spacing_m,
+                   "stop-and-map after this distance on a leg and at waypoints, m (0: waypoints)",
+                   io::kNonNegative)
+            .field("stop_settle_s", &S::stop_settle_s, "into a stop: pose and accumulation, s",
+                   io::kNonNegative)
+            .field("stop_duration_s", &S::stop_duration_s, "a stop in all, s", io::kPositive)
+            .section("stop_and_map", &S::stop_and_map, stop_and_map_schema());
         return s;
     }();
     return schema;
@@ -157,7 +223,7 @@ const io::ConfigSchema<RectangleMission>& mission_schema() {
     return schema;
 }
 
-/// The robot knows the surveyed UWB anchors, its tag's and its IMU's mounts.
+/// The robot knows the surveyed UWB anchors, its tag's, its IMU's and its LiDAR's mounts.
 void calibrate(CrawlerMissionScenario& m) {
     for (const sim::SensorSpec& sensor : m.simulation.sensors) {
         if (sensor.type == sim::SensorType::kImu) {
@@ -165,6 +231,9 @@ void calibrate(CrawlerMissionScenario& m) {
         }
         for (const sim::UwbAnchor& anchor : sensor.anchors) {
             m.stack.particle_filter.uwb_anchors_world_m[anchor.id] = anchor.position_world;
+        }
+        if (sensor.type == sim::SensorType::kRosetteLidar) {
+            m.stack.T_body_lidar = sensor.T_body_sensor.to_isometry();
         }
         if (sensor.type == sim::SensorType::kUwb) {
             m.stack.particle_filter.p_body_uwb_tag_m =

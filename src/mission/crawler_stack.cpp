@@ -37,6 +37,12 @@ void CrawlerStackConfig::validate(std::string_view prefix) const {
     config_checks::require_non_negative(gyro_calibration_s, prefix, "gyro_calibration_s");
     config_checks::require_positive(max_uwb_age_s, prefix, "max_uwb_age_s");
     config_checks::require_positive(max_position_sigma_m, prefix, "max_position_sigma_m");
+    config_checks::require_non_negative(stop_spacing_m, prefix, "stop_spacing_m");
+    config_checks::require_non_negative(stop_settle_s, prefix, "stop_settle_s");
+    config_checks::require(std::isfinite(stop_duration_s) && stop_duration_s > stop_settle_s,
+                           prefix, "stop_duration_s", stop_duration_s,
+                           "finite and > stop_settle_s");
+    stop_and_map.validate(std::string(prefix) + ".stop_and_map");
 }
 
 CrawlerStack::CrawlerStack(const CrawlerStackConfig& config, const SurfaceProjector& surface,
@@ -51,6 +57,7 @@ CrawlerStack::CrawlerStack(const CrawlerStackConfig& config, const SurfaceProjec
         leg_begins_.push_back(intended_.size());
         intended_.insert(intended_.end(), leg.begin(), leg.end());
     }
+    if (config_.T_body_lidar) mapper_.emplace(config_.stop_and_map, *config_.T_body_lidar);
 }
 
 bool CrawlerStack::screen(bool finite, const std::string& sensor, double stamp_s) {
@@ -205,6 +212,10 @@ void CrawlerStack::follow(CrawlerStackCommand& out, double t_s) {
              fmt::format(R"({{"waypoint":{},"reason":"waypoint {} reached"}})", leg_, leg_)});
         follower_.reset();
         ++leg_;
+        if (mapper_ && leg_ < legs_.size()) {
+            stop_due_ = true;  // map at the waypoint before the next leg
+            return;
+        }
     }
     if (leg_ >= legs_.size()) {
         change_state(MissionState::kCompleted,
@@ -222,7 +233,10 @@ CrawlerStackCommand CrawlerStack::command(
     watch_uwb(t_s, out.events);
     const bool usable = estimate_usable(t_s, out.events);
     const bool moving_allowed = state_ == MissionState::kRunning && !wheels_lost_ && usable;
-    if (moving_allowed && !calibrating(t_s, out.events)) follow(out, t_s);
+    if (moving_allowed && !calibrating(t_s, out.events) && !stopped_to_map(out, t_s)) {
+        follow(out, t_s);
+        count_distance();
+    }
     if (!std::isfinite(out.forward_mps) || !std::isfinite(out.yaw_rate_radps)) {
         out.forward_mps = 0.0;  // the follower's inputs are screened; never pass a NaN on
         out.yaw_rate_radps = 0.0;

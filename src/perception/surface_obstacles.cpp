@@ -10,6 +10,8 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <vector>
 #include <numbers>
 #include <optional>
 #include <utility>
@@ -152,6 +154,33 @@ std::pair<QuadricSurface, std::vector<std::size_t>> refine(
 }
 
 /// The finite points within max_range_m (x-y) of the robot, voxelised.
+/// One point per x-y column of `cell_m`: the mean x, y and the median z of its points, in
+/// column order (deterministic). See SurfaceObstaclesConfig::column_median.
+PointCloud column_medians(const PointCloud& cloud, double cell_m) {
+    std::map<std::pair<std::int64_t, std::int64_t>, std::vector<Eigen::Vector3d>> columns;
+    for (const auto& p : cloud.points) {
+        columns[{static_cast<std::int64_t>(std::floor(p.x() / cell_m)),
+                 static_cast<std::int64_t>(std::floor(p.y() / cell_m))}]
+            .push_back(p);
+    }
+    PointCloud out;
+    out.points.reserve(columns.size());
+    for (auto& [key, points] : columns) {
+        Eigen::Vector2d xy = Eigen::Vector2d::Zero();
+        std::vector<double> z;
+        z.reserve(points.size());
+        for (const auto& p : points) {
+            xy += p.head<2>();
+            z.push_back(p.z());
+        }
+        const auto mid = z.begin() + static_cast<std::ptrdiff_t>(z.size() / 2);
+        std::nth_element(z.begin(), mid, z.end());
+        xy /= static_cast<double>(points.size());
+        out.points.emplace_back(xy.x(), xy.y(), *mid);
+    }
+    return out;
+}
+
 PointCloud prepare(const PointCloud& cloud, const SurfaceObstaclesConfig& config,
                    SurfaceObstacles& result) {
     PointCloud in_range;
@@ -164,6 +193,7 @@ PointCloud prepare(const PointCloud& cloud, const SurfaceObstaclesConfig& config
             in_range.points.push_back(p);
         }
     }
+    if (config.column_median) return column_medians(in_range, config.voxel_size_m);
     VoxelGridConfig voxel;
     voxel.voxel_size_m = config.voxel_size_m;
     voxel.parallel = config.parallel;
@@ -306,6 +336,40 @@ bool on_border(const SurfaceGrid& grid, std::size_t c) {
 
 /// Unknown regions not 4-connected to the border, of at least the configured size, become
 /// negative obstacles (see the header).
+/// Obstacle cells within rim_cells of a cell without points (or of the grid's border) become
+/// uncertain, and so do their points. See SurfaceObstaclesConfig::rim_cells.
+void erode_rim(SurfaceObstacles& result, int rim_cells) {
+    if (rim_cells <= 0) return;
+    SurfaceGrid& grid = result.grid;
+    const int n = grid.cells_per_side;
+    const std::vector<SurfaceLabel> before = grid.cells;
+    const auto near_unknown = [&](int ix, int iy) {
+        for (int dy = -rim_cells; dy <= rim_cells; ++dy) {
+            for (int dx = -rim_cells; dx <= rim_cells; ++dx) {
+                const int x = ix + dx, y = iy + dy;
+                if (x < 0 || y < 0 || x >= n || y >= n) return true;
+                if (before[static_cast<std::size_t>(y * n + x)] == SurfaceLabel::kUnknown) return true;
+            }
+        }
+        return false;
+    };
+    for (int iy = 0; iy < n; ++iy) {
+        for (int ix = 0; ix < n; ++ix) {
+            SurfaceLabel& l = grid.cells[static_cast<std::size_t>(iy * n + ix)];
+            const bool obstacle = l == SurfaceLabel::kPositive || l == SurfaceLabel::kNegative;
+            if (obstacle && near_unknown(ix, iy)) l = SurfaceLabel::kUncertain;
+        }
+    }
+    for (std::size_t i = 0; i < result.points.size(); ++i) {
+        const auto c = cell_index(grid, result.points.points[i].head<2>());
+        const SurfaceLabel l = result.labels[i];
+        const bool obstacle = l == SurfaceLabel::kPositive || l == SurfaceLabel::kNegative;
+        if (obstacle && c && grid.cells[*c] == SurfaceLabel::kUncertain) {
+            result.labels[i] = SurfaceLabel::kUncertain;
+        }
+    }
+}
+
 void mark_enclosed_unknown(SurfaceGrid& grid, const SurfaceObstaclesConfig& config) {
     std::vector<bool> seen(grid.cells.size(), false);
     for (std::size_t c = 0; c < grid.cells.size(); ++c) {
@@ -337,13 +401,19 @@ ObstacleCluster summarise(const SurfaceGrid& grid, const std::vector<std::size_t
     return cluster;
 }
 
-std::vector<ObstacleCluster> find_clusters(const SurfaceGrid& grid) {
+/// The obstacle clusters; one smaller than min_cluster_cells is relabelled uncertain in the grid.
+std::vector<ObstacleCluster> find_clusters(SurfaceGrid& grid, std::size_t min_cluster_cells) {
     std::vector<ObstacleCluster> clusters;
     std::vector<bool> seen(grid.cells.size(), false);
     for (const SurfaceLabel label : {SurfaceLabel::kPositive, SurfaceLabel::kNegative}) {
         for (std::size_t c = 0; c < grid.cells.size(); ++c) {
             if (seen[c] || grid.cells[c] != label) continue;
-            clusters.push_back(summarise(grid, component(grid, c, label, true, seen), label));
+            const auto cells = component(grid, c, label, true, seen);
+            if (cells.size() < min_cluster_cells) {
+                for (const auto cell : cells) grid.cells[cell] = SurfaceLabel::kUncertain;
+                continue;
+            }
+            clusters.push_back(summarise(grid, cells, label));
         }
     }
     return clusters;
@@ -353,8 +423,9 @@ void rasterise(SurfaceObstacles& result, const SurfaceObstaclesConfig& config) {
     result.grid = empty_grid(config);
     if (result.status == SurfaceStatus::kOk) require_support(result, result.grid, config);
     fill_cells(result.grid, result);
+    erode_rim(result, config.rim_cells);
     if (config.enclosed_unknown_is_negative) mark_enclosed_unknown(result.grid, config);
-    result.clusters = find_clusters(result.grid);
+    result.clusters = find_clusters(result.grid, config.min_cluster_cells);
 }
 
 }  // namespace
@@ -377,6 +448,9 @@ void SurfaceObstaclesConfig::validate(std::string_view prefix) const {
             ">= max_range_m / 2048");
     require_count_at_least(min_obstacle_support, 1, prefix, "min_obstacle_support");
     require_count_at_least(min_enclosed_unknown_cells, 1, prefix, "min_enclosed_unknown_cells");
+    require_count_at_least(min_cluster_cells, 1, prefix, "min_cluster_cells");
+    config_checks::require(rim_cells >= 0 && rim_cells <= 50, prefix, "rim_cells", rim_cells,
+                           "in [0, 50]");
     parallel.validate(fmt::format("{}.parallel", prefix));
 }
 

@@ -1,6 +1,9 @@
 #include <scantling/registration/icp.hpp>
 
+#include <algorithm>
+
 #include <Eigen/Eigenvalues>
+#include <Eigen/QR>
 
 namespace scantling::registration {
 namespace {
@@ -33,6 +36,41 @@ DegeneracyReport analyze_degeneracy(const Matrix6d& H, const Eigen::Vector3d& ce
     for (int k = 0; k < 6; ++k) {
         if (report.eigenvalues(k) >= threshold) break;
         report.weak_directions.push_back((to_origin * solver.eigenvectors().col(k)).normalized());
+    }
+    report.degenerate = !report.weak_directions.empty();
+    return report;
+}
+
+DegeneracyReport analyze_degeneracy(const Matrix6d& H, const Eigen::Vector3d& centroid_target,
+                                    double radius_m, double threshold,
+                                    const Eigen::Matrix<double, 6, Eigen::Dynamic>& free_basis) {
+    const Eigen::Index k = free_basis.cols();
+    if (k >= 6) return analyze_degeneracy(H, centroid_target, radius_m, threshold);
+    if (k == 0) return {.eigenvalues = Vector6d::Ones(), .weak_directions = {}, .degenerate = false};
+    const Matrix6d A = adjoint_of_translation(centroid_target);
+    Vector6d scale_inv;
+    scale_inv << 1.0, 1.0, 1.0, 1.0 / radius_m, 1.0 / radius_m, 1.0 / radius_m;
+    const Matrix6d to_origin = A * scale_inv.asDiagonal();
+    const Matrix6d H_u = to_origin.transpose() * H * to_origin;
+    // The free directions in the scaled coordinates u (delta = to_origin u), orthonormalised so
+    // that the reduced eigenvalues keep the scale of the six-direction analysis.
+    const Eigen::MatrixXd basis_u = to_origin.inverse() * free_basis;
+    const Eigen::MatrixXd Q = Eigen::HouseholderQR<Eigen::MatrixXd>(basis_u).householderQ() *
+                              Eigen::MatrixXd::Identity(6, k);
+    const Eigen::MatrixXd H_free = Q.transpose() * H_u * Q;
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(0.5 *
+                                                                (H_free + H_free.transpose()));
+    DegeneracyReport report;
+    report.eigenvalues = Vector6d::Ones();
+    const double largest = solver.eigenvalues()(k - 1);
+    for (Eigen::Index i = 0; i < k; ++i) {
+        report.eigenvalues(i) = largest > 0.0 ? std::max(solver.eigenvalues()(i) / largest, 0.0)
+                                              : 0.0;
+    }
+    for (Eigen::Index i = 0; i < k; ++i) {
+        if (report.eigenvalues(i) >= threshold) break;
+        report.weak_directions.push_back(
+            Vector6d((to_origin * Q * solver.eigenvectors().col(i)).normalized()));
     }
     report.degenerate = !report.weak_directions.empty();
     return report;

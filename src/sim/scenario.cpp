@@ -27,13 +27,6 @@ std::string key(std::string_view prefix, std::string_view field) {
 
 double deg_to_rad(double deg) { return deg * std::numbers::pi / 180.0; }
 
-/// `path` relative to `base_directory` unless absolute (or no base is given).
-std::string resolve_path(const std::string& path, const std::string& base_directory) {
-    const std::filesystem::path file(path);
-    if (path.empty() || file.is_absolute() || base_directory.empty()) return path;
-    return (std::filesystem::path(base_directory) / file).string();
-}
-
 /// ConfigError "<prefix>.<field> = <value>, expected <expected>".
 [[noreturn]] void refuse(std::string_view prefix, std::string_view field, double value,
                          std::string_view expected) {
@@ -129,6 +122,7 @@ Eigen::Isometry3d PoseSpec::to_isometry() const {
 void WorldSpec::validate(std::string_view prefix) const {
     validate_section(*this, key(prefix, to_string(type)));
     detail::check_world_size(*this, prefix);
+    validate_surface_obstacles(obstacles, key(prefix, "obstacles"));
 }
 
 void TrajectorySpec::validate(std::string_view prefix) const {
@@ -265,40 +259,6 @@ Scenario parse_scenario(const std::string& yaml_text, const std::string& name) {
     Scenario scenario = apply_document(io::parse_yaml_string(yaml_text, name));
     if (scenario.name.empty()) scenario.name = std::filesystem::path(name).stem().string();
     return scenario;
-}
-
-World build_world(const WorldSpec& spec, const std::string& base_directory) {
-    switch (spec.type) {
-        case WorldType::kBallastTankMockup:
-            return build_ballast_tank_mockup(spec.ballast_tank_mockup);
-        case WorldType::kBallastTankLarge:
-            return build_ballast_tank_large(spec.ballast_tank_large);
-        case WorldType::kStorageTank:
-            return build_storage_tank(spec.storage_tank);
-        case WorldType::kDistillationColumn:
-            return build_distillation_column(spec.distillation_column);
-        case WorldType::kCylinder:
-            return build_cylinder(spec.cylinder);
-        case WorldType::kPlate:
-            return build_plate(spec.plate);
-        case WorldType::kShipHull:
-            return build_ship_hull(spec.ship_hull);
-        case WorldType::kMoebius:
-            return build_moebius(spec.moebius);
-        case WorldType::kUrban:
-            return build_urban(spec.urban);
-        case WorldType::kShipHullMesh: {
-            HullMeshDockConfig config = spec.ship_hull_mesh;
-            config.path = resolve_path(config.path, base_directory);
-            return build_hull_mesh_in_dock(config);
-        }
-        case WorldType::kMesh: {
-            MeshWorldConfig config = spec.mesh;
-            config.path = resolve_path(config.path, base_directory);
-            return build_mesh_world(config);
-        }
-    }
-    throw ConfigError("world.type: unknown value");
 }
 
 }  // namespace scantling::sim

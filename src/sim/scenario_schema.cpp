@@ -242,6 +242,13 @@ void check_scenario_document(const io::ConfigNode& root) {
             *world, "world", "cylinder",
             {"ballast_tank_mockup", "ballast_tank_large", "storage_tank", "distillation_column",
              "cylinder", "plate", "mesh", "ship_hull", "moebius", "ship_hull_mesh", "urban"});
+        const io::ConfigNode* obstacles = world->is_map() ? world->find("obstacles") : nullptr;
+        if (obstacles != nullptr && obstacles->is_sequence()) {
+            for (std::size_t i = 0; i < obstacles->sequence.size(); ++i) {
+                detail::check_surface_obstacle(obstacles->sequence[i],
+                                               io::detail::index_key("world.obstacles", i));
+            }
+        }
     }
     const io::ConfigNode* vehicle = root.find("vehicle");
     if (vehicle != nullptr && vehicle->is_map()) {

@@ -38,7 +38,9 @@ ConfigSchema<PlateConfig> plate_schema() {
         .field("stiffener_spacing_m", &PlateConfig::stiffener_spacing_m,
                "0 = bare plate, else at least 0.1", up_to(limits::kMaxWorldExtent_m))
         .section("stiffener", &PlateConfig::stiffener, stiffener_schema())
-        .section("defects", &PlateConfig::defects, defects_schema());
+        .section("defects", &PlateConfig::defects, defects_schema())
+        .list("holes", &PlateConfig::holes, plate_hole_schema(),
+              "axis-aligned rectangular through-holes");
     return s;
 }
 
@@ -292,7 +294,9 @@ const ConfigSchema<WorldSpec>& world_spec_schema() {
             .section("ship_hull", &WorldSpec::ship_hull, ship_hull_schema())
             .section("moebius", &WorldSpec::moebius, moebius_schema())
             .section("ship_hull_mesh", &WorldSpec::ship_hull_mesh, hull_mesh_schema())
-            .section("urban", &WorldSpec::urban, urban_schema());
+            .section("urban", &WorldSpec::urban, urban_schema())
+            .list("obstacles", &WorldSpec::obstacles, surface_obstacle_schema(),
+                  "bolts, brackets and weld beads on the crawler's surface, any type");
         return s;
     }();
     return schema;

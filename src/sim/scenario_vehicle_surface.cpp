@@ -45,8 +45,11 @@ CrawlerCommand pursuit(const VehicleSpec& spec, const SurfaceProjector& surface,
 std::unique_ptr<SurfaceProjector> crawler_surface(const WorldSpec& spec, const World& world) {
     switch (spec.type) {
         case WorldType::kPlate:
-            return std::make_unique<PlaneSurface>(Eigen::Vector3d::Zero(),
-                                                  Eigen::Vector3d::UnitZ());
+            // Bounded: a crawler stops at the plate's edge instead of driving on into the air
+            // (the plate's through-holes are not part of it).
+            return std::make_unique<PlateSurface>(
+                Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitZ(), Eigen::Vector3d::UnitX(),
+                0.5 * spec.plate.length_m, 0.5 * spec.plate.width_m);
         case WorldType::kCylinder:
             return std::make_unique<CylinderSurface>(
                 Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitZ(), spec.cylinder.radius_m);

@@ -42,9 +42,20 @@ void check_urban(const UrbanConfig& c, std::string_view prefix) {
                    c.blocks_x * c.blocks_y * facade_m2 / (c.storey_height_m * c.bay_width_m));
 }
 
+/// Each surface obstacle is its own mesh and truth (and plate holes are checked pairwise):
+/// counted before any of them is validated or built.
+void check_surface_obstacles(const WorldSpec& spec, std::string_view prefix) {
+    const std::size_t holes = spec.type == WorldType::kPlate ? spec.plate.holes.size() : 0;
+    if (spec.obstacles.size() + holes <= limits::kMaxSurfaceObstacles) return;
+    throw ConfigError(fmt::format(
+        "{}.obstacles has {} obstacles and {}.plate.holes {} holes, expected at most {} in all",
+        prefix, spec.obstacles.size(), prefix, holes, limits::kMaxSurfaceObstacles));
+}
+
 }  // namespace
 
 void check_world_size(const WorldSpec& spec, std::string_view prefix) {
+    check_surface_obstacles(spec, prefix);
     const std::string p = fmt::format("{}.{}", prefix, to_string(spec.type));
     if (spec.type == WorldType::kStorageTank) check_storage_tank(spec.storage_tank, p);
     if (spec.type == WorldType::kUrban) check_urban(spec.urban, p);

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 
 namespace scantling::sim {
 namespace {
@@ -27,6 +28,24 @@ double distance_to_segment(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
     const Eigen::Vector3d ab = b - a;
     const double t = std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
     return (p - (a + t * ab)).norm();
+}
+
+void check_obstacles(const std::vector<ObstacleTruth>& obstacles, std::string_view what) {
+    std::set<std::string_view> names;
+    for (std::size_t i = 0; i < obstacles.size(); ++i) {
+        const ObstacleTruth& o = obstacles[i];
+        const bool finite = o.a_world_m.allFinite() && o.b_world_m.allFinite() &&
+                            std::isfinite(o.radius_m) && std::isfinite(o.height_m);
+        if (!finite || !(o.radius_m > 0.0) || o.height_m == 0.0) {
+            throw InputError(
+                fmt::format("{}: obstacle {} '{}': radius_m = {}, height_m = {}, expected finite, "
+                            "radius_m > 0 and height_m != 0",
+                            what, i, o.name, o.radius_m, o.height_m));
+        }
+        if (!names.insert(o.name).second) {
+            throw InputError(fmt::format("{}: obstacle {}: name '{}' repeated", what, i, o.name));
+        }
+    }
 }
 
 }  // namespace
@@ -56,6 +75,7 @@ void check_valid(const World& world, std::string_view what) {
         check_index(m.defects[i].compartment, m.compartments.size(), what, "compartment of defect",
                     i, true);
     }
+    check_obstacles(world.obstacles, what);
 }
 
 int find_surface(const WorldMetadata& metadata, std::string_view name) {

@@ -6,6 +6,7 @@
 
 #include "detail/defect_placement.hpp"
 #include "detail/mesh_builder.hpp"
+#include "detail/plate_holes.hpp"
 #include "detail/tank_parts.hpp"
 
 #include <fmt/format.h>
@@ -29,8 +30,9 @@ World build_plate(const PlateConfig& config) {
     MeshBuilder builder;
     const double hx = 0.5 * config.length_m, hy = 0.5 * config.width_m;
     const double z = -0.5 * config.thickness_m;  // mid-plane: the top face is z = 0
-    builder.add_slab({{-hx, -hy, z}, {hx, -hy, z}, {hx, hy, z}, {-hx, hy, z}}, {}, kZ,
-                     config.thickness_m, builder.surface("plate"));
+    builder.add_slab({{-hx, -hy, z}, {hx, -hy, z}, {hx, hy, z}, {-hx, hy, z}},
+                     detail::plate_hole_loops(config, z), kZ, config.thickness_m,
+                     builder.surface("plate"));
     WorldMetadata metadata;
     metadata.name = "plate";
     if (config.stiffener_spacing_m > 0.0) {
@@ -44,6 +46,7 @@ World build_plate(const PlateConfig& config) {
         }
     }
     World world = builder.finish(std::move(metadata));
+    world.obstacles = detail::plate_obstacle_truths(config);
     detail::place_defects(world, config.defects, tags_named(world, "plate"), "plate.defects");
     return world;
 }

@@ -4,6 +4,8 @@
 
 #include <fmt/format.h>
 
+#include "detail/plate_holes.hpp"
+
 #include <cmath>
 
 namespace scantling::sim {
@@ -64,6 +66,7 @@ void PlateConfig::validate(std::string_view prefix) const {
     }
     stiffener.validate(sub(prefix, "stiffener"));
     defects.validate(sub(prefix, "defects"));
+    detail::check_plate_holes(*this, prefix);
 }
 
 void CylinderConfig::validate(std::string_view prefix) const {

@@ -24,6 +24,25 @@ TEST(PlaneSurface, ProjectsAlongTheNormal) {
     EXPECT_THROW(PlaneSurface(Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()), InputError);
 }
 
+TEST(PlateSurface, ProjectsOntoItsRectangleAndClampsAtTheEdges) {
+    // The 5 × 2 m plate of the `plate` world, x_axis given a little off the plane.
+    const PlateSurface plate(Eigen::Vector3d::Zero(), Eigen::Vector3d(0, 0, 2),
+                             Eigen::Vector3d(1, 0, 0.3), 2.5, 1.0);
+    const SurfacePoint inside = plate.project(Eigen::Vector3d(1.0, -0.5, 0.4));
+    EXPECT_LT((inside.point - Eigen::Vector3d(1.0, -0.5, 0.0)).norm(), 1e-12);
+    EXPECT_LT((inside.normal - Eigen::Vector3d::UnitZ()).norm(), 1e-12);
+    // Beyond a corner: the corner, same normal.
+    const SurfacePoint corner = plate.project(Eigen::Vector3d(4.0, 3.0, -1.0));
+    EXPECT_LT((corner.point - Eigen::Vector3d(2.5, 1.0, 0.0)).norm(), 1e-12);
+    EXPECT_LT((corner.normal - Eigen::Vector3d::UnitZ()).norm(), 1e-12);
+    EXPECT_THROW(PlateSurface(Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitZ(),
+                              Eigen::Vector3d::UnitZ(), 1.0, 1.0),
+                 InputError);
+    EXPECT_THROW(PlateSurface(Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitZ(),
+                              Eigen::Vector3d::UnitX(), 1.0, 0.0),
+                 InputError);
+}
+
 TEST(CylinderSurface, NormalPointsAwayFromTheAxisOutsideAndTowardsItInside) {
     const CylinderSurface outside(Eigen::Vector3d(1, 1, 0), Eigen::Vector3d::UnitZ(), 2.0);
     const SurfacePoint s = outside.project(Eigen::Vector3d(4, 1, 7));
@@ -75,6 +94,26 @@ TEST(MeshSurface, RejectsEmptyMeshAndNonFinitePoints) {
     EXPECT_THROW(MeshSurface(TriangleMesh{}), InputError);
     const MeshSurface plate(grid_plate(1.0, 2));
     EXPECT_THROW(plate.project(Eigen::Vector3d(NAN, 0, 0)), InputError);
+}
+
+TEST(MeshSurface, ATriangleWithoutAreaNeverGivesAZeroNormal) {
+    // A unit square of two triangles, and first a sliver lying on their shared diagonal, as
+    // STL exports leave them. Right above the diagonal all three are equally near; the sliver
+    // has the lowest index but no normal.
+    TriangleMesh mesh;
+    mesh.vertices = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0.5, 0.5, 0}};
+    mesh.triangles = {{0, 2, 4}, {0, 1, 2}, {0, 2, 3}};
+    for (const bool smooth : {false, true}) {
+        const MeshSurface surface(mesh, smooth);
+        const SurfacePoint s = surface.project(Eigen::Vector3d(0.5, 0.5, 1.0));
+        EXPECT_LT((s.point - Eigen::Vector3d(0.5, 0.5, 0.0)).norm(), 1e-12);
+        EXPECT_LT((s.normal - Eigen::Vector3d::UnitZ()).norm(), 1e-9) << smooth;
+    }
+    // Only slivers: no surface at all.
+    TriangleMesh slivers;
+    slivers.vertices = {{0, 0, 0}, {1, 1, 0}, {0.5, 0.5, 0}};
+    slivers.triangles = {{0, 1, 2}};
+    EXPECT_THROW(MeshSurface{slivers}, InputError);
 }
 
 }  // namespace

@@ -87,6 +87,8 @@ TEST(CrawlerMission, CoversAPlateRectangleOnItsOwnEstimate) {
     EXPECT_TRUE(r.result.completed);
     EXPECT_EQ(r.result.waypoints_reached, 10u);
     EXPECT_EQ(count_events(r, "gyro_calibrated"), 1u);
+    EXPECT_EQ(count_events(r, "stop_mapped"), 0u);  // no LiDAR, no stops
+    EXPECT_EQ(r.result.stop_scores.stops, 0u);
     // Issue 15's targets: cross-track mean ≤ 0.03 m, coverage ≥ 99 %.
     EXPECT_LT(r.result.cross_track_mean_m, 0.03);
     EXPECT_GE(r.result.coverage, 0.99);

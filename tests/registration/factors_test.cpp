@@ -105,5 +105,50 @@ TEST(DegeneracyTest, ZeroHessianReportsAllSixDirections) {
     EXPECT_TRUE(r.degenerate);
 }
 
+/// Point-to-plane Hessian of a plate (z = 0, 2000 points over 2 × 2 m) with a wall x = 1 of
+/// `wall_points` points over y, z in [−1, 1] × [0, 0.02], and one y = 1 of as many.
+Matrix6d plate_with_walls(int wall_points, Rng& rng) {
+    Matrix6d H = Matrix6d::Zero();
+    const auto add = [&H](const Eigen::Vector3d& q, const Eigen::Vector3d& n) {
+        const RowVector6d J = point_to_plane_jacobian(q, n);
+        H += J.transpose() * J;
+    };
+    for (int i = 0; i < 2000; ++i) {
+        add({rng.uniform(-1, 1), rng.uniform(-1, 1), 0.0}, Eigen::Vector3d::UnitZ());
+    }
+    for (int i = 0; i < wall_points; ++i) {
+        add({1.0, rng.uniform(-1, 1), rng.uniform(0, 0.02)}, Eigen::Vector3d::UnitX());
+        add({rng.uniform(-1, 1), 1.0, rng.uniform(0, 0.02)}, Eigen::Vector3d::UnitY());
+    }
+    return H;
+}
+
+Eigen::Matrix<double, 6, Eigen::Dynamic> planar_basis() {
+    Eigen::Matrix<double, 6, Eigen::Dynamic> B = Eigen::Matrix<double, 6, 3>::Zero();
+    B(0, 0) = B(1, 1) = B(5, 2) = 1.0;  // x, y, yaw
+    return B;
+}
+
+TEST(DegeneracyTest, AFreeBasisJudgesOnlyTheDirectionsASolveMayMove) {
+    Rng rng(17);
+    // 1 % of the points on low walls: among six directions x and y look weak next to the
+    // plate's z, roll and pitch; among the planar solve's x, y, yaw they are what there is.
+    const Matrix6d H = plate_with_walls(20, rng);
+    const Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    EXPECT_TRUE(analyze_degeneracy(H, c, 0.8, 1e-1).degenerate);
+    const DegeneracyReport free = analyze_degeneracy(H, c, 0.8, 1e-1, planar_basis());
+    EXPECT_FALSE(free.degenerate) << free.eigenvalues.transpose();
+    EXPECT_DOUBLE_EQ(free.eigenvalues(5), 1.0);  // a fixed direction
+    // The bare plate: nothing in x, y or yaw, all three weak and within the basis.
+    const DegeneracyReport bare =
+        analyze_degeneracy(plate_with_walls(0, rng), c, 0.8, 1e-2, planar_basis());
+    ASSERT_EQ(bare.weak_directions.size(), 3u);
+    for (const Vector6d& v : bare.weak_directions) {
+        EXPECT_NEAR(v(2), 0.0, 1e-12);  // no z, roll or pitch in a weak planar direction
+        EXPECT_NEAR(v(3), 0.0, 1e-12);
+        EXPECT_NEAR(v(4), 0.0, 1e-12);
+    }
+}
+
 }  // namespace
 }  // namespace scantling::registration

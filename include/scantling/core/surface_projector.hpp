@@ -2,7 +2,8 @@
 /// @file
 /// Surfaces a crawler drives on (SPEC §6, §10): a projection of any nearby point onto the
 /// surface, with the unit surface normal there (pointing into free space, the side the
-/// crawler is on). Analytic plate and cylinder (storage tank wall), and any triangle mesh.
+/// crawler is on). Analytic plane, bounded plate and cylinder (storage tank wall), and any
+/// triangle mesh.
 ///
 /// Thread-safety: `project` is const and may be called concurrently. Determinism: pure.
 
@@ -40,6 +41,27 @@ class PlaneSurface final : public SurfaceProjector {
     Eigen::Vector3d normal_;
 };
 
+/// A flat rectangular plate (the `plate` world): the plane's projection clamped to the
+/// rectangle centre ± half_length_m · x_axis ± half_width_m · (normal × x_axis), so that a
+/// walk on it stops at its edges (planning/surface_rectangle.hpp refuses a rectangle that runs
+/// over them) where the unbounded plane would carry it on into the air. O(1).
+class PlateSurface final : public SurfaceProjector {
+  public:
+    /// `x_axis` is made orthogonal to the normal. Throws InputError for non-finite input, a
+    /// zero normal, an x_axis along the normal or a half size not > 0.
+    PlateSurface(const Eigen::Vector3d& centre, const Eigen::Vector3d& normal,
+                 const Eigen::Vector3d& x_axis, double half_length_m, double half_width_m);
+    SurfacePoint project(const Eigen::Vector3d& p_world) const override;
+
+  private:
+    Eigen::Vector3d centre_;
+    Eigen::Vector3d normal_;
+    Eigen::Vector3d x_axis_;
+    Eigen::Vector3d y_axis_;
+    double half_length_m_;
+    double half_width_m_;
+};
+
 enum class CylinderSide { kOutside, kInside };
 
 /// An unbounded circular cylinder (a storage-tank shell), driven on from outside (normal away
@@ -62,13 +84,16 @@ class CylinderSurface final : public SurfaceProjector {
 /// Any triangle mesh (ship hull, tank, Möbius strip). The normal is the triangle's normal
 /// (counter-clockwise = free side, as in world.hpp) or, with `smooth_normals`, the
 /// barycentric blend of the vertex normals (computed when the mesh has none), which turns
-/// the body smoothly across edges instead of in jumps.
+/// the body smoothly across edges instead of in jumps. Triangles without area are skipped (they
+/// have no normal; a normal is never zero). Non-manifold meshes (an edge of three triangles, a
+/// double-sided sheet) are projected onto like any other: the nearest triangle wins, ties to
+/// the lowest index, so the answer is deterministic.
 /// Cost: O(T) build of a uniform grid of triangle bounding boxes; a query visits the cells
 /// around the point until no unvisited cell can hold a closer triangle (a few cells for a
 /// point near the surface; degrades towards O(T) far from it).
 class MeshSurface final : public SurfaceProjector {
   public:
-    /// Throws InputError for an invalid or empty mesh.
+    /// Throws InputError for an invalid or empty mesh, or one with no triangle with an area.
     explicit MeshSurface(TriangleMesh mesh, bool smooth_normals = true);
     SurfacePoint project(const Eigen::Vector3d& p_world) const override;
 

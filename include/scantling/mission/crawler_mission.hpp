@@ -35,6 +35,7 @@
 /// Errors name the file, line and key (ParseError) or the field (ConfigError, InputError).
 
 #include <Eigen/Geometry>
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -72,6 +73,26 @@ CrawlerMissionScenario load_crawler_mission_scenario(
 CrawlerMissionScenario parse_crawler_mission_scenario(const std::string& yaml_text,
                                                       const std::string& name = "<mission>");
 
+/// Obstacles of one class at the stops (src/mission/detail/crawler_stop_metrics.hpp).
+struct CrawlerClassScore {
+    std::size_t in_view = 0;
+    std::size_t found = 0;
+};
+
+/// The stop-and-map's figures on the truth, summed over the stops: obstacle recall per class,
+/// precision per sign, and the stops' map (ICP-corrected) and PF poses against the true pose.
+struct CrawlerStopScores {
+    std::size_t stops = 0;
+    std::size_t stops_icp_applied = 0;
+    double map_error_rms_m = 0.0;
+    double map_error_max_m = 0.0;
+    double pf_error_rms_m = 0.0;
+    double pf_error_max_m = 0.0;
+    std::array<CrawlerClassScore, 5> classes{};  ///< indexed by sim::ObstacleKind
+    std::size_t positive_clusters = 0, positive_right = 0;
+    std::size_t negative_clusters = 0, negative_right = 0;
+};
+
 /// Figures of one crawler run (also in mission/summary.json).
 struct CrawlerMissionResult {
     std::string directory;
@@ -96,6 +117,7 @@ struct CrawlerMissionResult {
     std::size_t uwb_refused = 0;
     std::size_t inputs_rejected = 0;
     std::size_t events = 0;
+    CrawlerStopScores stop_scores;  ///< all zero without a LiDAR
     LoopTiming timing;
 };
 

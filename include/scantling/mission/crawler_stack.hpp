@@ -24,6 +24,14 @@
 /// dead-reckons), and a position σ above max_position_sigma_m stops the crawler until it is
 /// back (`estimate_invalid`). A command is never NaN.
 ///
+/// Stop-and-map (SPEC §6; perception/stop_and_map.hpp), when a LiDAR is mounted: after every
+/// stop_spacing_m driven on a leg (the estimate's path) and at every waypoint the crawler stands
+/// still for stop_duration_s. stop_settle_s into the stop it captures the PF pose and starts
+/// accumulating the LiDAR frames; at the end the stop's cloud is labelled, registered against
+/// the previous stop's and its obstacles mapped: the command carries the StopMap and a
+/// `stop_mapped` event. The stop-and-map's map pose is reported beside the PF's, not fed back
+/// into the filter (docs/results.md compares both against the truth).
+///
 /// Frames: world; body x forward, z the surface normal. Thread-safety: not thread-safe, one
 /// stack per vehicle. Deterministic for a seed and an input sequence.
 
@@ -41,6 +49,7 @@
 #include <scantling/io/recording.hpp>
 #include <scantling/localization/surface_particle_filter.hpp>
 #include <scantling/mission/stack_event.hpp>
+#include <scantling/perception/stop_and_map.hpp>
 #include <scantling/planning/surface_rectangle.hpp>
 
 namespace scantling::mission {
@@ -65,6 +74,14 @@ struct CrawlerStackConfig {
     /// exceeds this, m, > 0, with an `estimate_invalid` event (`estimate_valid` when it is
     /// back): dead reckoning grows it by a few centimetres per metre driven.
     double max_position_sigma_m = 0.5;
+    /// Stop-and-map (SPEC §6), with a LiDAR mounted (T_body_lidar): the crawler stops after
+    /// every stop_spacing_m driven on a leg and at every waypoint, m, >= 0 (0: at waypoints only).
+    double stop_spacing_m = 1.0;
+    double stop_settle_s = 0.5;     ///< the pose is taken, and the accumulation starts, s, >= 0
+    double stop_duration_s = 3.0;   ///< standing still in all, s, > stop_settle_s (SPEC: >= 3 s)
+    perception::StopAndMapConfig stop_and_map{};  ///< YAML: stack.stop_and_map
+    /// The LiDAR's mount (body ← LiDAR), from the calibration; none: no stop-and-map.
+    std::optional<Eigen::Isometry3d> T_body_lidar;
 
     /// Throws ConfigError naming "<prefix>.<field>".
     void validate(std::string_view prefix = "stack") const;
@@ -79,6 +96,7 @@ struct CrawlerStackCommand {
     /// The follower's error in the current segment (estimate, not truth).
     control::SegmentFrameError error;
     std::vector<StackEvent> events;
+    std::optional<perception::StopMap> stop;  ///< a stop that ended this tick
 };
 
 class CrawlerStack {
@@ -94,6 +112,10 @@ class CrawlerStack {
     void add_imu(const io::ImuRecord& sample);
     void add_wheel_odometry(const io::WheelOdometryRecord& sample);
     void add_uwb(const io::UwbRecord& range);
+    /// A LiDAR frame (LiDAR frame): kept while a stop accumulates, otherwise ignored.
+    void add_lidar_frame(const PointCloud& frame_lidar);
+    /// True while a stop accumulates LiDAR frames (a recorder may keep only those).
+    bool mapping() const { return mapper_ && mapper_->collecting(); }
 
     /// The command at `t_s` after the operator's commands (start, pause, resume, abort).
     CrawlerStackCommand command(double t_s,
@@ -122,6 +144,9 @@ class CrawlerStack {
     void follow(CrawlerStackCommand& out, double t_s);
     /// True while the start's gyro calibration runs (standing still); ends it when due.
     bool calibrating(double t_s, std::vector<StackEvent>& events);
+    /// True while a stop-and-map stop holds the crawler; opens, feeds and closes the stops.
+    bool stopped_to_map(CrawlerStackCommand& out, double t_s);
+    void count_distance();
 
     CrawlerStackConfig config_;
     localization::SurfaceParticleFilter filter_;
@@ -146,6 +171,11 @@ class CrawlerStack {
     std::vector<std::string> rejecting_;
     std::size_t inputs_rejected_ = 0;
     std::vector<StackEvent> pending_;
+    std::optional<perception::StopMapper> mapper_;
+    std::optional<double> stop_began_s_;  ///< the open stop's start
+    bool stop_due_ = false;               ///< a waypoint was reached: stop before going on
+    double driven_m_ = 0.0;               ///< estimated distance since the last stop
+    std::optional<Eigen::Vector3d> last_p_;
 };
 
 }  // namespace scantling::mission

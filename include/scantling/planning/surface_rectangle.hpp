@@ -21,8 +21,17 @@
 ///
 /// Errors: InputError naming the request's field: non-finite or non-positive sizes, a start
 /// farther than `max_start_distance_m` from the surface, an up direction along the normal (no
-/// vertical on a floor), and a rectangle that leaves the surface (a walking step that advances
-/// by less than half its length: the projection is held at the surface's edge).
+/// vertical on a floor), and a rectangle that leaves the surface, naming the transect and the
+/// point: a walking step is refused at the surface's border, which is an open mesh edge, the
+/// rim of a hole, a sharp fold (the 1 cm rim of a thick plate or of the Möbius strip) or a
+/// PlateSurface's edge (an unbounded PlaneSurface has none): the step advances by less than
+/// half its length (the border met head on), or the projection pulls consecutive steps back
+/// along the surface by more than half a step in all (the border met at a grazing angle, along
+/// which the walk would otherwise slide). A rectangle whose
+/// transects or legs cross a hole of the mesh is therefore refused, not routed around it; one
+/// that fits between the holes is planned, the holes being left uncovered. A non-manifold mesh
+/// (an edge of three triangles, a fin on a plate) is walked as the nearest triangle says: no
+/// error, and no hang (every walk is bounded by its length or its budget).
 ///
 /// Frames: world, metres. Thread-safety: pure functions. Cost: O(length / march_step_m)
 /// projections. Deterministic.
@@ -67,6 +76,12 @@ struct SurfaceRectanglePlan {
 SurfaceRectanglePlan plan_surface_rectangle(const SurfaceRectangleRequest& request,
                                             const SurfaceProjector& surface,
                                             const SurfaceWalkConfig& config = {});
+
+/// `p_world` snapped onto the surface. InputError "<field> = (x, y, z) is d m from the surface,
+/// expected <= max m" when it is farther than `max_distance_m` (a start off the mesh), or
+/// "<field> ... is not finite".
+SurfacePoint snap_to_surface(const SurfaceProjector& surface, const Eigen::Vector3d& p_world,
+                             double max_distance_m, std::string_view field);
 
 /// `start` walked `distance_m` along `direction_world` (made tangent at the start) on the
 /// surface. InputError when the walk leaves the surface ("<what> leaves the surface ...").

@@ -180,4 +180,15 @@ RegistrationResult align(const PointCloud& source, const PointCloud& target,
 DegeneracyReport analyze_degeneracy(const Matrix6d& H, const Eigen::Vector3d& centroid_target,
                                     double radius_m, double threshold);
 
+/// Same, within the directions a constrained solve may move (`free_basis`: columns spanning
+/// them, as twists at the target origin; constrained_icp.hpp's planar x, y, yaw): the fixed
+/// directions are not asked of the geometry, so they are never weak, and "divided by the
+/// largest" compares the free directions among themselves. Why: a plate's normal constrains z,
+/// roll and pitch a hundred times more than the few points on a bead constrain x or y, and the
+/// six-direction ratio would call every planar registration degenerate. eigenvalues holds the
+/// free directions' values ascending, then 1 for each fixed one. Pure, O(1).
+DegeneracyReport analyze_degeneracy(const Matrix6d& H, const Eigen::Vector3d& centroid_target,
+                                    double radius_m, double threshold,
+                                    const Eigen::Matrix<double, 6, Eigen::Dynamic>& free_basis);
+
 }  // namespace scantling::registration

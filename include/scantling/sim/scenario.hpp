@@ -27,6 +27,7 @@
 #include <scantling/sim/mav_dynamics.hpp>
 #include <scantling/sim/moving_obstacles.hpp>
 #include <scantling/sim/rov_dynamics.hpp>
+#include <scantling/sim/surface_obstacles.hpp>
 #include <scantling/sim/trajectory.hpp>
 #include <scantling/sim/uwb.hpp>
 #include <scantling/sim/waypoint_trajectory.hpp>
@@ -74,7 +75,12 @@ struct WorldSpec {
     /// `path` relative to the scenario file's folder (or absolute).
     HullMeshDockConfig ship_hull_mesh{};
     UrbanConfig urban{};
-    /// Validates the section of `type` ("<prefix>.storage_tank.diameter_m = ...").
+    /// Bolts, brackets and weld beads on the crawler's surface, any type (surface_obstacles.hpp;
+    /// their ground truth goes to World::obstacles).
+    std::vector<SurfaceObstacleConfig> obstacles{};
+    /// Validates the section of `type` ("<prefix>.storage_tank.diameter_m = ...") and the
+    /// obstacles ("<prefix>.obstacles[0].diameter_m = ..."); where they sit is checked by
+    /// build_world, which needs the surface.
     void validate(std::string_view prefix = "world") const;
 };
 
@@ -239,8 +245,9 @@ Scenario load_scenario(const std::string& path);
 /// the current directory.
 Scenario parse_scenario(const std::string& yaml_text, const std::string& name = "<scenario>");
 
-/// Builds the world of `spec` (ConfigError, or FileError/ParseError for a mesh world).
-/// `base_directory` resolves a relative mesh path.
+/// Builds the world of `spec` (ConfigError, or FileError/ParseError for a mesh world), then
+/// its obstacles on the crawler's surface (add_surface_obstacles: ConfigError naming
+/// "world.obstacles[i]" for one off the surface). `base_directory` resolves a relative mesh path.
 World build_world(const WorldSpec& spec, const std::string& base_directory = "");
 
 }  // namespace scantling::sim

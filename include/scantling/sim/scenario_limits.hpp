@@ -62,6 +62,12 @@ inline constexpr int kMaxDefects = 10'000;  ///< defects.count
 inline constexpr std::size_t kMaxWaypoints = 10'000;
 /// Moving obstacles: each is tested against every ray of every sensor (no acceleration structure).
 inline constexpr std::size_t kMaxMovingObstacles = 256;
+/// Surface obstacles of a world (`world.obstacles` plus `world.plate.holes`): each is a few
+/// dozen to a few hundred triangles, and plate holes are checked pairwise for overlap.
+inline constexpr std::size_t kMaxSurfaceObstacles = 1'024;
+/// Any size of a surface obstacle (bolt diameter, bracket side, bead width and height): a
+/// larger one is structure, not an obstacle on it.
+inline constexpr double kMaxSurfaceObstacleSize_m = 10.0;
 inline constexpr double kMaxTurns = 10'000.0;      ///< helix rotations, orbit turns
 inline constexpr double kMaxMeshScale = 10'000.0;  ///< mesh file units to metres
 /// CAD-map spacing: the map has area / spacing² points (core caps it at 1e9 points).

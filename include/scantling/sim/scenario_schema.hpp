@@ -69,6 +69,12 @@ const io::ConfigSchema<MovingObstacle>& moving_obstacle_schema();
 /// ParseError for a size key of the other shape ("moving_obstacles[0].half_extents_m: does not
 /// apply to shape 'sphere'").
 void check_moving_obstacle(const io::ConfigNode& item, const std::string& path);
+/// `world.plate.holes[i]` and `world.obstacles[i]` (scenario_schema_surface_obstacles.cpp).
+io::ConfigSchema<PlateHoleConfig> plate_hole_schema();
+const io::ConfigSchema<SurfaceObstacleConfig>& surface_obstacle_schema();
+/// ParseError for a missing `kind`, a missing required key of the kind, or a key of another kind
+/// ("world.obstacles[0].size_m: does not apply to kind 'bolt'").
+void check_surface_obstacle(const io::ConfigNode& item, const std::string& path);
 }  // namespace detail
 
 }  // namespace scantling::sim

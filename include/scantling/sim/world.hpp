@@ -16,6 +16,7 @@
 
 #include <scantling/core/triangle_mesh.hpp>
 #include <scantling/io/structural_map.hpp>
+#include <scantling/sim/surface_obstacles_truth.hpp>
 
 namespace scantling::sim {
 
@@ -37,10 +38,16 @@ struct World {
     TriangleMesh mesh;
     std::vector<int> surface_tags;  ///< one per triangle, index into metadata.surfaces
     WorldMetadata metadata;
+    /// Ground truth of the obstacles on the surface (surface_obstacles_truth.hpp): the plate's
+    /// edges and holes, and the bolts, brackets and weld beads a scenario places; their
+    /// triangles are in `mesh` (a placed obstacle has its own surface, named as its truth).
+    /// Simulation-only: not written by write_world.
+    std::vector<ObstacleTruth> obstacles{};
 };
 
 /// Throws InputError naming `what` when the mesh is invalid, the tags are not one per triangle
-/// or not valid surface indices, or an id/compartment reference is out of range.
+/// or not valid surface indices, an id/compartment reference is out of range, or an obstacle
+/// truth is not finite, has radius_m <= 0 or height_m = 0, or repeats a name.
 void check_valid(const World& world, std::string_view what);
 
 /// Tag of the surface called `name`, or -1.

@@ -44,7 +44,18 @@ struct DefectPlacementConfig {
     void validate(std::string_view prefix) const;
 };
 
+/// An axis-aligned rectangular through-hole of a plate (PlateConfig::holes). Two-element
+/// vectors, as the YAML writes them (`centre_m: [1.0, 0.5]`).
+struct PlateHoleConfig {
+    std::vector<double> centre_m{0.0, 0.0};  ///< x, y of the centre on the plate, m
+    std::vector<double> size_m{0.1, 0.1};    ///< sides along x and y, m
+};
+
 /// Flat metal plate, x in [-length/2, length/2], y in [-width/2, width/2], top face z = 0.
+/// Its World::obstacles hold four kPlateEdge truths along the top outline ("plate_edge_1..4",
+/// counter-clockwise from the edge y = -width/2; radius 0.02 m, height -thickness) and one
+/// kHole truth per hole ("hole_<i+1>": the capsule inscribed in the rectangle, its axis along
+/// the longer side at z = 0, radius half the shorter side, height -thickness).
 struct PlateConfig {
     double length_m = 5.0;
     double width_m = 2.0;
@@ -52,9 +63,18 @@ struct PlateConfig {
     double stiffener_spacing_m = 0.0;  ///< 0 = bare plate; else flat bars along x on top
     StiffenerConfig stiffener{};
     DefectPlacementConfig defects{};
+    /// Through-holes, each at least kPlateHoleMargin_m inside the outline and clear of the other
+    /// holes and of the stiffeners (web and flange seen from above); at most
+    /// limits::kMaxSurfaceObstacles.
+    std::vector<PlateHoleConfig> holes{};
 
     void validate(std::string_view prefix = "plate") const;
 };
+
+/// Least clearance of a plate hole from the plate's outline, another hole or a stiffener.
+inline constexpr double kPlateHoleMargin_m = 0.02;
+/// Footprint half-width of a plate edge's truth (World::obstacles).
+inline constexpr double kPlateEdgeRadius_m = 0.02;
 
 /// Isolated cylinder (SPEC §9): axis z, base at z = 0, centred on the z axis.
 struct CylinderConfig {

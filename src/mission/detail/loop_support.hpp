@@ -56,20 +56,21 @@ void write_text(const std::string& path, const std::string& text);
 
 /// One reading on its way to the stack: inside a dropout window of `faults` nothing; inside a
 /// NaN window the reading poisoned (fault_injection.hpp), not recorded; otherwise recorded
-/// (its time into `record_s`) and then given to `feed`. True when it was recorded.
+/// (its time into `record_s`, unless `record` is false) and then given to `feed`. True when it
+/// was recorded.
 template <class Feed>
 bool deliver(const sim::SensorReading& reading, const FaultInjector& faults,
-             sim::RecordingWriter& writer, double& record_s, Feed&& feed) {
+             sim::RecordingWriter& writer, double& record_s, Feed&& feed, bool record = true) {
     if (const SensorFault* fault = faults.fault_of(reading)) {
         if (fault->kind == FaultKind::kNan) feed(poisoned(reading));
         return false;
     }
-    {
+    if (record) {
         StageClock clock(record_s);
         writer.add(reading);
     }
     feed(reading);
-    return true;
+    return record;
 }
 
 /// A simulated IMU sample and UWB round as the io records a recording gives.

@@ -11,7 +11,8 @@ namespace scantling::sim::detail {
 
 /// Throws ConfigError naming the keys whose product sizes the world mesh (storage-tank
 /// courses x segments, Moebius segments, urban facade windows) when it exceeds
-/// limits::kMaxWorldElements, and a plate stiffener spacing that is neither 0 nor at least
+/// limits::kMaxWorldElements, more than limits::kMaxSurfaceObstacles obstacles and plate holes,
+/// and a plate stiffener spacing that is neither 0 nor at least
 /// limits::kMinStructureSpacing_m. Call after the world's own validate().
 void check_world_size(const WorldSpec& spec, std::string_view prefix);
 
