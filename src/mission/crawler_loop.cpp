@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <variant>
 
 #include <scantling/core/error.hpp>
@@ -169,6 +170,8 @@ void feed(CrawlerStack& stack, const sim::SensorReading& reading) {
         for (const io::UwbRecord& record : detail::uwb_records(*uwb)) stack.add_uwb(record);
     } else if (const auto* rosette = std::get_if<sim::RosetteReading>(&reading.data)) {
         stack.add_lidar_frame(rosette->frame);
+    } else if (const auto* image = std::get_if<sim::ImageReading>(&reading.data)) {
+        stack.add_image(image->image, image->intrinsics);
     }
 }
 
@@ -365,6 +368,12 @@ CrawlerMissionResult run_crawler_mission(const CrawlerMissionScenario& scenario,
     writer.finish(detail::recording_summary(scenario.name, scenario.description, simulation, sim));
     detail::write_mission_files(writer, files, intended_waypoints(stack),
                                 summary_json(scenario, result));
+    if (const perception::TextureMap* texture = stack.texture_map()) {
+        texture->write(
+            (std::filesystem::path(writer.staging_directory()) / io::recording_layout::kMissionDir /
+             io::recording_layout::kMissionTextureDir)
+                .string());
+    }
     writer.write_timing(result.wall_time_s, result.real_time_factor);
     writer.commit();
     return result;

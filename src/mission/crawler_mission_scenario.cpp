@@ -33,6 +33,16 @@ struct RectangleMission {
     double swath_width_m = 0.5;
 };
 
+/// `texture_map:` of a crawler document: the map's extent in its frame, placed in the world.
+struct TextureDocument {
+    bool enabled = true;  ///< the section's presence enables it
+    double cell_size_m = 0.005;
+    double min_x_m = -1.0, max_x_m = 1.0, min_y_m = -1.0, max_y_m = 1.0;
+    double max_range_m = 1.5;
+    bool uncertain_is_obstacle = false;
+    sim::PoseSpec map_pose{};
+};
+
 struct CrawlerDocument {
     std::string name;
     std::string description;
@@ -41,6 +51,38 @@ struct CrawlerDocument {
     CrawlerStackConfig stack{};
     std::vector<SensorFault> faults;
 };
+
+const io::ConfigSchema<TextureDocument>& texture_schema() {
+    using S = TextureDocument;
+    static const io::ConfigSchema<S> schema = [] {
+        io::ConfigSchema<S> s;
+        s.field("enabled", &S::enabled, "paint the camera images (needs a camera)")
+            .field("cell_size_m", &S::cell_size_m, "a ground cell, m", io::kPositive)
+            .field("min_x_m", &S::min_x_m, "extent in the map frame, m")
+            .field("max_x_m", &S::max_x_m)
+            .field("min_y_m", &S::min_y_m)
+            .field("max_y_m", &S::max_y_m)
+            .field("max_range_m", &S::max_range_m, "camera to cell at most, m", io::kPositive)
+            .field("uncertain_is_obstacle", &S::uncertain_is_obstacle, "paint uncertain red")
+            .section("map_pose", &S::map_pose, sim::detail::pose_spec_schema(),
+                     "the map frame in the world (z the surface normal)");
+        return s;
+    }();
+    return schema;
+}
+
+perception::TextureMapConfig to_config(const TextureDocument& d) {
+    perception::TextureMapConfig c;
+    c.cell_size_m = d.cell_size_m;
+    c.min_x_m = d.min_x_m;
+    c.max_x_m = d.max_x_m;
+    c.min_y_m = d.min_y_m;
+    c.max_y_m = d.max_y_m;
+    c.max_range_m = d.max_range_m;
+    c.uncertain_is_obstacle = d.uncertain_is_obstacle;
+    c.T_world_map = d.map_pose.to_isometry();
+    return c;
+}
 
 const io::ConfigSchema<control::SegmentFollowerConfig>& follower_schema() {
     using S = control::SegmentFollowerConfig;
@@ -123,7 +165,8 @@ const io::ConfigSchema<perception::SurfaceObstaclesConfig>& obstacles_schema() {
             .field("min_obstacle_support", &S::min_obstacle_support,
                    "obstacle points of one sign needed in the 3x3 cells around one")
             .field("min_cluster_cells", &S::min_cluster_cells, "smaller clusters are noise, cells")
-            .field("rim_cells", &S::rim_cells, "obstacles this close to unobserved cells: uncertain")
+            .field("rim_cells", &S::rim_cells,
+                   "obstacles this close to unobserved cells: uncertain")
             .field("enclosed_unknown_is_negative", &S::enclosed_unknown_is_negative,
                    "an enclosed region without returns is a hole")
             .field("min_enclosed_unknown_cells", &S::min_enclosed_unknown_cells,
@@ -179,6 +222,8 @@ const io::ConfigSchema<CrawlerStackConfig>& stack_schema() {
                    io::kPositive)
             .field("max_position_sigma_m", &S::max_position_sigma_m,
                    "a larger position σ stops the crawler, m", io::kPositive)
+            .field("anchor_hidden_margin_m", &S::anchor_hidden_margin_m,
+                   "ranges of anchors this far behind the surface are dropped, m", io::kNonNegative)
             .field("stop_spacing_m", &S::stop_spacing_m,
                    "stop-and-map after this distance on a leg and at waypoints, m (0: waypoints)",
                    io::kNonNegative)
@@ -232,6 +277,9 @@ void calibrate(CrawlerMissionScenario& m) {
         for (const sim::UwbAnchor& anchor : sensor.anchors) {
             m.stack.particle_filter.uwb_anchors_world_m[anchor.id] = anchor.position_world;
         }
+        if (sensor.type == sim::SensorType::kCamera) {
+            m.stack.T_body_camera = sensor.T_body_sensor.to_isometry();
+        }
         if (sensor.type == sim::SensorType::kRosetteLidar) {
             m.stack.T_body_lidar = sensor.T_body_sensor.to_isometry();
         }
@@ -245,7 +293,13 @@ void calibrate(CrawlerMissionScenario& m) {
 CrawlerMissionScenario from_document(const io::ConfigNode& root, const std::string& name) {
     if (!root.is_map()) io::detail::fail(root, "", "expected a map (a mission scenario)");
     CrawlerDocument document;
-    document_schema().apply(without(root, {"simulation", "mission", "operator"}), document);
+    document_schema().apply(without(root, {"simulation", "mission", "operator", "texture_map"}),
+                            document);
+    if (const io::ConfigNode* texture = root.find("texture_map")) {
+        TextureDocument t;
+        texture_schema().apply(*texture, t, "texture_map");
+        document.stack.texture = {.enabled = t.enabled, .map = to_config(t)};
+    }
     RectangleMission mission;
     const io::ConfigNode& mission_node = required(root, "mission");
     mission_schema().apply(mission_node, mission, "mission");

@@ -37,12 +37,14 @@ void CrawlerStackConfig::validate(std::string_view prefix) const {
     config_checks::require_non_negative(gyro_calibration_s, prefix, "gyro_calibration_s");
     config_checks::require_positive(max_uwb_age_s, prefix, "max_uwb_age_s");
     config_checks::require_positive(max_position_sigma_m, prefix, "max_position_sigma_m");
+    config_checks::require_non_negative(anchor_hidden_margin_m, prefix, "anchor_hidden_margin_m");
     config_checks::require_non_negative(stop_spacing_m, prefix, "stop_spacing_m");
     config_checks::require_non_negative(stop_settle_s, prefix, "stop_settle_s");
     config_checks::require(std::isfinite(stop_duration_s) && stop_duration_s > stop_settle_s,
                            prefix, "stop_duration_s", stop_duration_s,
                            "finite and > stop_settle_s");
     stop_and_map.validate(std::string(prefix) + ".stop_and_map");
+    if (texture.enabled) texture.map.validate("texture_map");
 }
 
 CrawlerStack::CrawlerStack(const CrawlerStackConfig& config, const SurfaceProjector& surface,
@@ -58,6 +60,7 @@ CrawlerStack::CrawlerStack(const CrawlerStackConfig& config, const SurfaceProjec
         intended_.insert(intended_.end(), leg.begin(), leg.end());
     }
     if (config_.T_body_lidar) mapper_.emplace(config_.stop_and_map, *config_.T_body_lidar);
+    if (config_.texture.enabled && config_.T_body_camera) texture_.emplace(config_.texture.map);
 }
 
 bool CrawlerStack::screen(bool finite, const std::string& sensor, double stamp_s) {
@@ -121,8 +124,30 @@ void CrawlerStack::add_uwb(const io::UwbRecord& range) {
     if (!range.valid) return;
     const bool finite = std::isfinite(range.stamp_s) && std::isfinite(range.range_m);
     if (!screen(finite, "uwb", range.stamp_s)) return;
+    if (anchor_hidden(range)) return;
     const localization::UpdateResult result = filter_.update_uwb(range);
     if (result.status == localization::UpdateStatus::kApplied) last_uwb_s_ = range.stamp_s;
+}
+
+bool CrawlerStack::anchor_hidden(const io::UwbRecord& range) {
+    const auto& anchors = config_.particle_filter.uwb_anchors_world_m;
+    const auto anchor = anchors.find(range.anchor_id);
+    if (anchor == anchors.end()) return false;  // the filter refuses and counts it
+    const Eigen::Isometry3d T = filter_.estimate().T_world_body;
+    const double in_front_m = (anchor->second - T.translation()).dot(T.linear().col(2));
+    const bool hidden = in_front_m < -config_.anchor_hidden_margin_m;
+    const auto it = std::find(hidden_anchors_.begin(), hidden_anchors_.end(), range.anchor_id);
+    if (hidden && it == hidden_anchors_.end()) {
+        hidden_anchors_.push_back(range.anchor_id);
+        pending_.push_back(
+            {range.stamp_s, "uwb_anchor_hidden",
+             fmt::format(R"({{"anchor":{},"behind_m":{:.2f},"reason":"the anchor is behind the )"
+                         R"(surface: its ranges are dropped"}})",
+                         range.anchor_id, -in_front_m)});
+    } else if (!hidden && it != hidden_anchors_.end()) {
+        hidden_anchors_.erase(it);
+    }
+    return hidden;
 }
 
 void CrawlerStack::watch_uwb(double t_s, std::vector<StackEvent>& events) {

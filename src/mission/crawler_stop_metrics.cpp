@@ -66,7 +66,8 @@ void StopMetrics::add(const perception::StopMap& stop, const Eigen::Isometry3d& 
         const std::vector<Eigen::Vector2d> axis = axis_samples(o, T_body_world);
         bool found = false;
         for (std::size_t c = 0; c < clusters.size(); ++c) {
-            if (clusters[c].label != sign_of(o) || !matches(axis, o.radius_m, clusters[c])) continue;
+            if (clusters[c].label != sign_of(o) || !matches(axis, o.radius_m, clusters[c]))
+                continue;
             right[c] = true;
             found = true;
         }

@@ -87,7 +87,8 @@ void StopMapper::add_frame(const PointCloud& frame_lidar) {
     cloud.points.reserve(cloud.size() + n);
     // The robot stands still: every frame is in the same body frame (positions only, as the
     // detection and the ICP read them).
-    for (std::size_t i = 0; i < n; ++i) cloud.points.push_back(T_body_lidar_ * frame_lidar.points[i]);
+    for (std::size_t i = 0; i < n; ++i)
+        cloud.points.push_back(T_body_lidar_ * frame_lidar.points[i]);
     ++open_->num_frames;
 }
 
@@ -99,10 +100,9 @@ void StopMapper::correct(StopMap& stop) const {
     }
     // The localisation's motion since the previous stop, carried onto the previous map pose.
     const Eigen::Isometry3d C_none = Eigen::Isometry3d::Identity();
-    stop.T_world_body_map =
-        registration::corrected_map_pose(previous_->T_world_body_map,
-                                         previous_->T_world_body_localisation,
-                                         stop.T_world_body_localisation, C_none);
+    stop.T_world_body_map = registration::corrected_map_pose(
+        previous_->T_world_body_map, previous_->T_world_body_localisation,
+        stop.T_world_body_localisation, C_none);
     if (!config_.correct_pose) {
         stop.icp_status = "off";
         return;
@@ -111,9 +111,9 @@ void StopMapper::correct(StopMap& stop) const {
     // estimated with the surface around each obstacle (see the file comment).
     const PointCloud source = obstacle_points(stop.detection);
     // The previous stop's cloud in the robot frame the localisation predicts now.
-    const PointCloud target = transformed(
-        previous_->cloud_body,
-        stop.T_world_body_localisation.inverse() * previous_->T_world_body_localisation);
+    const PointCloud target =
+        transformed(previous_->cloud_body, stop.T_world_body_localisation.inverse() *
+                                               previous_->T_world_body_localisation);
     if (source.size() < config_.min_icp_points || target.size() < config_.min_icp_points) {
         stop.icp_status = fmt::format("too few obstacle points: {} and {} < min_icp_points = {}",
                                       source.size(), target.size(), config_.min_icp_points);
@@ -124,8 +124,8 @@ void StopMapper::correct(StopMap& stop) const {
     stop.icp_status = r.status;
     if (!r.converged) return;
     if (r.degeneracy.degenerate) {
-        stop.icp_status = fmt::format("degenerate: {} weak direction(s)",
-                                      r.degeneracy.weak_directions.size());
+        stop.icp_status =
+            fmt::format("degenerate: {} weak direction(s)", r.degeneracy.weak_directions.size());
         return;
     }
     stop.icp_applied = true;

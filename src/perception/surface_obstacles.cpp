@@ -11,10 +11,11 @@
 #include <cmath>
 #include <limits>
 #include <map>
-#include <vector>
 #include <numbers>
 #include <optional>
+#include <tuple>
 #include <utility>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -153,9 +154,10 @@ std::pair<QuadricSurface, std::vector<std::size_t>> refine(
     return {surface, std::move(inliers)};
 }
 
-/// The finite points within max_range_m (x-y) of the robot, voxelised.
 /// One point per x-y column of `cell_m`: the mean x, y and the median z of its points, in
-/// column order (deterministic). See SurfaceObstaclesConfig::column_median.
+/// column order. See SurfaceObstaclesConfig::column_median. Independent of the input order to
+/// the bit: each column's points are sorted before their x, y are summed (a floating-point sum
+/// depends on its order, and a last-bit change of one point moves the fitted surface).
 PointCloud column_medians(const PointCloud& cloud, double cell_m) {
     std::map<std::pair<std::int64_t, std::int64_t>, std::vector<Eigen::Vector3d>> columns;
     for (const auto& p : cloud.points) {
@@ -166,6 +168,9 @@ PointCloud column_medians(const PointCloud& cloud, double cell_m) {
     PointCloud out;
     out.points.reserve(columns.size());
     for (auto& [key, points] : columns) {
+        std::sort(points.begin(), points.end(), [](const auto& a, const auto& b) {
+            return std::tie(a.x(), a.y(), a.z()) < std::tie(b.x(), b.y(), b.z());
+        });
         Eigen::Vector2d xy = Eigen::Vector2d::Zero();
         std::vector<double> z;
         z.reserve(points.size());
@@ -181,6 +186,7 @@ PointCloud column_medians(const PointCloud& cloud, double cell_m) {
     return out;
 }
 
+/// The finite points within max_range_m (x-y) of the robot, voxelised (or column medians).
 PointCloud prepare(const PointCloud& cloud, const SurfaceObstaclesConfig& config,
                    SurfaceObstacles& result) {
     PointCloud in_range;
@@ -334,8 +340,6 @@ bool on_border(const SurfaceGrid& grid, std::size_t c) {
     return ix == 0 || iy == 0 || ix == n - 1 || iy == n - 1;
 }
 
-/// Unknown regions not 4-connected to the border, of at least the configured size, become
-/// negative obstacles (see the header).
 /// Obstacle cells within rim_cells of a cell without points (or of the grid's border) become
 /// uncertain, and so do their points. See SurfaceObstaclesConfig::rim_cells.
 void erode_rim(SurfaceObstacles& result, int rim_cells) {
@@ -348,7 +352,8 @@ void erode_rim(SurfaceObstacles& result, int rim_cells) {
             for (int dx = -rim_cells; dx <= rim_cells; ++dx) {
                 const int x = ix + dx, y = iy + dy;
                 if (x < 0 || y < 0 || x >= n || y >= n) return true;
-                if (before[static_cast<std::size_t>(y * n + x)] == SurfaceLabel::kUnknown) return true;
+                if (before[static_cast<std::size_t>(y * n + x)] == SurfaceLabel::kUnknown)
+                    return true;
             }
         }
         return false;
@@ -370,6 +375,8 @@ void erode_rim(SurfaceObstacles& result, int rim_cells) {
     }
 }
 
+/// Unknown regions not 4-connected to the border, of at least the configured size, become
+/// negative obstacles (see the header).
 void mark_enclosed_unknown(SurfaceGrid& grid, const SurfaceObstaclesConfig& config) {
     std::vector<bool> seen(grid.cells.size(), false);
     for (std::size_t c = 0; c < grid.cells.size(); ++c) {

@@ -46,7 +46,8 @@ DegeneracyReport analyze_degeneracy(const Matrix6d& H, const Eigen::Vector3d& ce
                                     const Eigen::Matrix<double, 6, Eigen::Dynamic>& free_basis) {
     const Eigen::Index k = free_basis.cols();
     if (k >= 6) return analyze_degeneracy(H, centroid_target, radius_m, threshold);
-    if (k == 0) return {.eigenvalues = Vector6d::Ones(), .weak_directions = {}, .degenerate = false};
+    if (k == 0)
+        return {.eigenvalues = Vector6d::Ones(), .weak_directions = {}, .degenerate = false};
     const Matrix6d A = adjoint_of_translation(centroid_target);
     Vector6d scale_inv;
     scale_inv << 1.0, 1.0, 1.0, 1.0 / radius_m, 1.0 / radius_m, 1.0 / radius_m;
@@ -64,8 +65,8 @@ DegeneracyReport analyze_degeneracy(const Matrix6d& H, const Eigen::Vector3d& ce
     report.eigenvalues = Vector6d::Ones();
     const double largest = solver.eigenvalues()(k - 1);
     for (Eigen::Index i = 0; i < k; ++i) {
-        report.eigenvalues(i) = largest > 0.0 ? std::max(solver.eigenvalues()(i) / largest, 0.0)
-                                              : 0.0;
+        report.eigenvalues(i) =
+            largest > 0.0 ? std::max(solver.eigenvalues()(i) / largest, 0.0) : 0.0;
     }
     for (Eigen::Index i = 0; i < k; ++i) {
         if (report.eigenvalues(i) >= threshold) break;

@@ -37,6 +37,7 @@ const char* const kMissionFiles[] = {layout::kMissionEstimates, layout::kMission
                                      layout::kMissionCommands,  layout::kMissionEvents,
                                      layout::kMissionPath,      layout::kMissionSummary,
                                      layout::kMissionSonarMap};
+const char* const kTextureFiles[] = {"live.png", "clean.png", "metadata.json"};
 const char* const kWorldFiles[] = {"map.ply", "mesh.ply", "metadata.json",
                                    layout::kWorldMapDescriptorCache};
 
@@ -66,10 +67,26 @@ bool is_real_folder(const fs::directory_entry& entry) {
     return entry.symlink_status(ec).type() == fs::file_type::directory;
 }
 
+/// The first entry of mission/texture/ that the crawler's texture map does not write.
+std::optional<std::string> foreign_in_texture(const fs::path& folder) {
+    for (const fs::directory_entry& entry : fs::directory_iterator(folder)) {
+        const std::string file = entry.path().filename().string();
+        if (!is_one_of(file, kTextureFiles) || !is_regular(entry)) {
+            return std::string(layout::kMissionDir) + "/" + layout::kMissionTextureDir + "/" + file;
+        }
+    }
+    return std::nullopt;
+}
+
 /// The first entry of the sub-folder `name` that the writer does not write there.
 std::optional<std::string> foreign_in_folder(const fs::path& folder, const std::string& name) {
     for (const fs::directory_entry& entry : fs::directory_iterator(folder)) {
         const std::string file = entry.path().filename().string();
+        if (name == layout::kMissionDir && file == layout::kMissionTextureDir &&
+            is_real_folder(entry)) {
+            if (auto foreign = foreign_in_texture(entry.path())) return foreign;
+            continue;
+        }
         bool known = is_frame_file(entry.path()) || is_one_of(file, kFrameFolderFiles);
         if (name == layout::kWorldDir) known = is_one_of(file, kWorldFiles);
         if (name == layout::kMissionDir) known = is_one_of(file, kMissionFiles);

@@ -303,5 +303,47 @@ stack: {max_position_sigma_m: 0.1}
     EXPECT_EQ(events_of(r, "timeout").size(), 1u);
 }
 
+TEST(CrawlerBadInputUwb, AnchorsUnderThePlateAreDroppedWithAnEvent) {
+    // The four anchors 0.5-1 m under the 5 × 2 m plate: UWB does not cross the steel, so their
+    // ranges are the path around it. Each is reported once and dropped; the crawler dead-reckons.
+    const std::string text = R"(
+simulation:
+  world: {type: plate, plate: {length_m: 5.0, width_m: 2.0}}
+  vehicle: {type: crawler}
+  sensors:
+    - {type: imu, rate_hz: 100}
+    - {type: wheel_odometry, rate_hz: 50}
+    - type: uwb
+      anchors:
+        - {id: 1, position_world: [-1.5, -0.5, -0.5]}
+        - {id: 2, position_world: [1.5, -0.5, -1.0]}
+        - {id: 3, position_world: [1.5, 0.5, -0.5]}
+        - {id: 4, position_world: [-1.5, 0.5, -1.0]}
+  duration_s: 20
+  dt_s: 0.01
+  seed: 2
+  export: {world: false}
+start: {xyz: [-1.0, -0.5, 0.0], rpy_deg: [0.0, 0.0, 90.0]}
+mission:
+  type: surface_rectangle
+  start_m: [-0.8, -0.4, 0.0]
+  width_m: 1.2
+  height_m: 0.6
+  max_step_m: 0.3
+  up: [0.0, 1.0, 0.0]
+  swath_width_m: 0.4
+)";
+    const Flown r = fly(text, "anchors_under_the_plate");
+    EXPECT_EQ(r.result.uwb_applied, 0u);
+    const auto hidden = events_of(r, "uwb_anchor_hidden");
+    ASSERT_EQ(hidden.size(), 4u);
+    for (const io::EventRecord& e : hidden) EXPECT_LT(e.t_s, 1.0) << e.json;
+    const auto lost = events_of(r, "sensor_lost");
+    ASSERT_EQ(lost.size(), 1u);
+    EXPECT_NE(lost[0].json.find(R"("sensor":"uwb")"), std::string::npos);
+    // Dead reckoning over 20 s stays within a few centimetres (IMU, wheels).
+    EXPECT_LT(r.result.position_error_max_m, 0.1);
+}
+
 }  // namespace
 }  // namespace scantling::mission

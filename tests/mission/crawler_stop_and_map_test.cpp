@@ -5,7 +5,10 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <fstream>
 #include <string>
+
+#include <nlohmann/json.hpp>
 
 #include <scantling/io/mission_log.hpp>
 #include <scantling/mission/crawler_mission.hpp>
@@ -38,6 +41,8 @@ simulation:
         - {id: 4, position_world: [-3.0, 2.0, 2.0]}
     - type: rosette_lidar
       T_body_sensor: {xyz: [0.15, 0.0, 0.30], rpy_deg: [0.0, 40.0, 0.0]}
+    - {type: camera, width: 160, height: 120, rate_hz: 1,
+       T_body_sensor: {xyz: [0.15, 0.0, 0.30], rpy_deg: [-135.0, 0.0, -90.0]}}
   duration_s: 120
   dt_s: 0.01
   seed: 3
@@ -51,6 +56,7 @@ mission:
   max_step_m: 0.4
   up: [0.0, 1.0, 0.0]
   swath_width_m: 0.4
+texture_map: {cell_size_m: 0.01, min_x_m: -0.5, max_x_m: 0.9, min_y_m: -0.8, max_y_m: 1.2}
 stack:
   stop_spacing_m: 0.5
   stop_and_map:
@@ -64,12 +70,16 @@ std::size_t files_in(const fs::path& dir) {
 
 TEST(CrawlerStopAndMap, StopsMapsAndFindsTheObstaclesBesideItsPath) {
     const CrawlerMissionScenario m = parse_crawler_mission_scenario(kPlate, "stop_and_map.yaml");
-    const fs::path dir = fs::path(::testing::TempDir()) /
-                         ("scantling_stop_and_map_" + std::to_string(::getpid()));
+    const fs::path dir =
+        fs::path(::testing::TempDir()) / ("scantling_stop_and_map_" + std::to_string(::getpid()));
     fs::remove_all(dir);
     const CrawlerMissionResult r = run_crawler_mission(m, dir.string());
     const io::MissionLog log = *io::read_mission_log(dir.string());
     const std::size_t rosette_files = files_in(dir / "rosette");
+    std::ifstream metadata_file(dir / "mission" / "texture" / "metadata.json");
+    ASSERT_TRUE(metadata_file.good()) << "no texture map written";
+    const nlohmann::json texture = nlohmann::json::parse(metadata_file);
+    const bool clean_png = fs::exists(dir / "mission" / "texture" / "clean.png");
     fs::remove_all(dir);
 
     ASSERT_TRUE(r.completed);
@@ -81,10 +91,11 @@ TEST(CrawlerStopAndMap, StopsMapsAndFindsTheObstaclesBesideItsPath) {
     EXPECT_GE(s.stops, 4u);
     const auto& bracket = s.classes[static_cast<std::size_t>(sim::ObstacleKind::kBracket)];
     const auto& bolt = s.classes[static_cast<std::size_t>(sim::ObstacleKind::kBolt)];
-    std::printf("stops %zu: bracket %zu/%zu, bolt %zu/%zu, positive precision %zu/%zu, "
-                "PF at stops %.4f m\n",
-                s.stops, bracket.found, bracket.in_view, bolt.found, bolt.in_view,
-                s.positive_right, s.positive_clusters, s.pf_error_rms_m);
+    std::printf(
+        "stops %zu: bracket %zu/%zu, bolt %zu/%zu, positive precision %zu/%zu, "
+        "PF at stops %.4f m\n",
+        s.stops, bracket.found, bracket.in_view, bolt.found, bolt.in_view, s.positive_right,
+        s.positive_clusters, s.pf_error_rms_m);
     ASSERT_GT(bracket.in_view, 0u);
     EXPECT_EQ(bracket.found, bracket.in_view);
     ASSERT_GT(bolt.in_view, 0u);
@@ -94,6 +105,12 @@ TEST(CrawlerStopAndMap, StopsMapsAndFindsTheObstaclesBesideItsPath) {
     // The recording keeps the stops' LiDAR frames only: ~25 a stop, not 10 a second.
     EXPECT_GT(rosette_files, 20u * s.stops);
     EXPECT_LT(rosette_files, 30u * s.stops + 5u);
+    // The texture map: every image on the live layer, one clean layer per stop.
+    EXPECT_TRUE(clean_png);
+    EXPECT_EQ(texture["stops"].get<std::size_t>(), s.stops);
+    EXPECT_GT(texture["images"].get<std::size_t>(), 10u);
+    // At 1 cm over 1.4 × 2 m the camera saw most of the plate around the two transects.
+    EXPECT_GT(texture["live"]["observed_cells"].get<std::size_t>(), 10000u);
 }
 
 }  // namespace

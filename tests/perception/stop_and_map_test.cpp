@@ -95,9 +95,7 @@ StopMap stop(StopMapper& mapper, const std::vector<Box>& boxes, const Eigen::Iso
     return mapper.finish(t_s + 2.5);
 }
 
-double yaw_of(const Eigen::Isometry3d& T) {
-    return std::atan2(T.linear()(1, 0), T.linear()(0, 0));
-}
+double yaw_of(const Eigen::Isometry3d& T) { return std::atan2(T.linear()(1, 0), T.linear()(0, 0)); }
 
 TEST(StopAndMap, TheIcpCorrectsTheLocalisationsErrorBetweenStops) {
     StopMapper mapper({}, lidar_mount());
@@ -112,8 +110,7 @@ TEST(StopAndMap, TheIcpCorrectsTheLocalisationsErrorBetweenStops) {
     const Eigen::Isometry3d loc_2 = pose(0.45, -0.03, 0.01);
     const StopMap second = stop(mapper, boxes, truth_2, loc_2, 20.0, rng);
     ASSERT_TRUE(second.icp_applied) << second.icp_status;
-    const Eigen::Vector3d error =
-        second.T_world_body_map.translation() - truth_2.translation();
+    const Eigen::Vector3d error = second.T_world_body_map.translation() - truth_2.translation();
     std::printf("map pose error %.4f m, yaw %.5f rad (localisation 0.058 m, 0.02 rad)\n",
                 error.norm(), yaw_of(second.T_world_body_map) - 0.03);
     // Measured 0.0195 m and -0.024 rad: the features' sides give the position back to a third of

@@ -282,7 +282,12 @@ TEST(SurfaceObstacleTruth, PlacementErrorsNameTheField) {
     expect_error(
         plate + "    - {kind: bolt, position_world: [0.5, 0.2, 0.35]}\n",
         {"world.obstacles[0].position_world", "is 0.35 m off the surface", "within 0.1 m"});
+    // Beyond the plate's edge: the crawler's plate surface is bounded.
     expect_error(plate + "    - {kind: bolt, position_world: [3.0, 0.0, 0.0]}\n",
+                 {"world.obstacles[0].position_world", "is 0.5 m off the surface"});
+    // On the tank's cylinder 2 m above its roof: on the crawler's (infinite) surface, not on the
+    // world's mesh.
+    expect_error(tank_yaml("    - {kind: bolt, position_world: [2.0, 0.0, 6.8]}\n"),
                  {"world.obstacles[0].position_world", "from the world's mesh"});
     expect_error(plate + "    - {kind: weld_bead, from_world: [0, 0, 0], to_world: [0, 0, 0.5]}\n",
                  {"world.obstacles[0].to_world", "off the surface"});

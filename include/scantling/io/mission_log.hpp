@@ -37,6 +37,8 @@ inline constexpr const char* kMissionPath = "intended_path.csv";
 inline constexpr const char* kMissionSummary = "summary.json";
 /// The ROV's sonar inspection map (mission/rov_mission.hpp): one voxel per line.
 inline constexpr const char* kMissionSonarMap = "sonar_map.csv";
+/// The crawler's texture map (perception/texture_map.hpp): live.png, clean.png, metadata.json.
+inline constexpr const char* kMissionTextureDir = "texture";
 inline constexpr const char* kMissionEstimatesHeader =
     "stamp_s,x,y,z,vx,vy,vz,roll,pitch,yaw,sx,sy,sz,syaw,valid";
 inline constexpr const char* kMissionCommandsHeader =

@@ -61,15 +61,15 @@ struct MappedObstacle {
 
 /// What one stop gave.
 struct StopMap {
-    std::size_t index = 0;      ///< 0 for the first stop
-    double begin_s = 0.0;       ///< accumulation began (the localisation pose's time)
-    double end_s = 0.0;         ///< accumulation ended
+    std::size_t index = 0;  ///< 0 for the first stop
+    double begin_s = 0.0;   ///< accumulation began (the localisation pose's time)
+    double end_s = 0.0;     ///< accumulation ended
     std::size_t num_frames = 0;
     Eigen::Isometry3d T_world_body_localisation = Eigen::Isometry3d::Identity();  ///< P_cnew
     Eigen::Isometry3d T_world_body_map = Eigen::Isometry3d::Identity();           ///< P_new
-    bool icp_applied = false;  ///< C came from the ICP (else identity; see the file comment)
-    std::string icp_status;    ///< the ICP's status, "first stop", "off" or why it was not used
-    SurfaceObstacles detection;              ///< body frame
+    bool icp_applied = false;    ///< C came from the ICP (else identity; see the file comment)
+    std::string icp_status;      ///< the ICP's status, "first stop", "off" or why it was not used
+    SurfaceObstacles detection;  ///< body frame
     std::vector<MappedObstacle> obstacles;  ///< world
 };
 

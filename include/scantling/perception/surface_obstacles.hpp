@@ -64,7 +64,7 @@ struct SurfaceObstaclesConfig {
     /// of the column is the surface (or the obstacle's top) to σ/√n. Vertical faces collapse to
     /// their column's median: the grid labels heights, which is what a crawler drives on.
     bool column_median = false;
-    double max_range_m = 3.0;    ///< points farther in x-y from the robot are dropped, > 0
+    double max_range_m = 3.0;             ///< points farther in x-y from the robot are dropped, > 0
     double inlier_threshold_m = 0.01;     ///< |distance| to the surface of a free point, > 0
     double obstacle_threshold_m = 0.012;  ///< |distance| of an obstacle, >= inlier threshold;
                                           ///< points in between are "uncertain"

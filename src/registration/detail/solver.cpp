@@ -49,8 +49,8 @@ void fill_statistics(RegistrationResult& result, const LinearSystem& system,
     const Eigen::Vector3d centroid = system.q_sum / count;
     const double radius_sq = system.q_norm_sq_sum / count - centroid.squaredNorm();
     const double radius = std::max(std::sqrt(std::max(radius_sq, 0.0)), kMinRadiusM);
-    result.degeneracy =
-        analyze_degeneracy(system.H, centroid, radius, settings.degeneracy_threshold, settings.basis);
+    result.degeneracy = analyze_degeneracy(system.H, centroid, radius,
+                                           settings.degeneracy_threshold, settings.basis);
     const Uncertainty u = estimate_uncertainty(system, settings.basis, settings.covariance, record,
                                                result.degeneracy.degenerate);
     result.information = u.information;
