@@ -3,9 +3,12 @@
 # (scenarios/missions/crawler/): the storage tank's shell (6 x 2 m), the flat 5 x 2 m plate
 # with UWB, the 2 x 1 m plate on IMU and wheels only, the real DTC hull's side (needs
 # ../shared/data; skipped with a message without it), and 3 x 0.7 m along the Möbius strip
-# through its twist. Prints one table row per run from its summary.json: cross-track error
+# through its twist, and the 5 x 2 m plate with labelled obstacles and stop-and-map. Prints one
+# table row per run from its summary.json: cross-track error
 # (mean, max; truth to the intended transects), the share of the rectangle within half a swath
-# of the true path, the PF's error against the truth, mission time and the real-time factor.
+# of the true path, the PF's error against the truth, mission time and the real-time factor;
+# then, for the runs with a LiDAR, the stop-and-map's obstacle recall per class (found / in
+# view, summed over the stops), precision per sign, and the stops' map and PF poses.
 #   scripts/crawler-experiments.sh [build-dir] [work-dir]
 # build-dir holds apps/scantling (default build), work-dir the recordings (default
 # /tmp/scantling-crawler). CRAWLER_ONLY="plate_2x1_imu" restricts the runs; CRAWLER_SEED picks
@@ -14,7 +17,7 @@ set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 build="${1:-build}"
 work="${2:-/tmp/scantling-crawler}"
-only="${CRAWLER_ONLY:-storage_tank_rectangle plate_5x2_rectangle plate_2x1_imu dtc_hull_rectangle moebius_rectangle}"
+only="${CRAWLER_ONLY:-storage_tank_rectangle plate_5x2_rectangle plate_2x1_imu dtc_hull_rectangle moebius_rectangle plate_5x2_obstacles}"
 cli="$build/apps/scantling"
 [[ -x "$cli" ]] || { echo "crawler-experiments: $cli not found: build $build first" >&2; exit 1; }
 mkdir -p "$work"
@@ -40,6 +43,28 @@ print(f"| {sys.argv[2]} | {'yes' if s['completed'] else 'no'} | {s['transects']}
       f"{s['position_error_rms_m']:.3f} | {s['position_error_max_m']:.3f} | "
       f"{math.degrees(s['yaw_error_rms_rad']):.2f} | {s['mission_time_s']:.1f} | "
       f"{s['real_time_factor']:.0f}x |")
+PY
+done
+# The stop-and-map figures of the runs that carry a LiDAR (summary.json "stop_and_map").
+printf '\n| run | stops | ICP applied | weld bead | bolt | bracket | hole | plate edge | positive precision | negative precision | map pose RMS (m) | PF at stops RMS (m) |\n'
+printf '|---|---|---|---|---|---|---|---|---|---|---|---|\n'
+for run in $only; do
+  summary="$work/$run/mission/summary.json"
+  [[ -f "$summary" ]] || continue
+  python3 - "$summary" "$run" <<'PY'
+import json, sys
+s = json.load(open(sys.argv[1])).get("stop_and_map")
+if s:
+    def rec(kind):
+        r = s["recall"].get(kind)
+        return f"{r['found']}/{r['in_view']}" if r else "-"
+    def prec(sign):
+        n = s[f"{sign}_clusters"]
+        return f"{s[f'{sign}_precision']:.2f} of {n}" if n else "-"
+    print(f"| {sys.argv[2]} | {s['stops']} | {s['stops_icp_applied']} | {rec('weld_bead')} | "
+          f"{rec('bolt')} | {rec('bracket')} | {rec('hole')} | {rec('plate_edge')} | "
+          f"{prec('positive')} | {prec('negative')} | {s['map_pose_error_rms_m']:.3f} | "
+          f"{s['pf_at_stops_error_rms_m']:.3f} |")
 PY
 done
 echo "crawler-experiments: recordings in $work"

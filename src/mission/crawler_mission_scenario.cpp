@@ -224,6 +224,13 @@ const io::ConfigSchema<CrawlerStackConfig>& stack_schema() {
                    "a larger position σ stops the crawler, m", io::kPositive)
             .field("anchor_hidden_margin_m", &S::anchor_hidden_margin_m,
                    "ranges of anchors this far behind the surface are dropped, m", io::kNonNegative)
+            .field("obstacle_slow_distance_m", &S::obstacle_slow_distance_m,
+                   "slow down for an obstacle ahead from this distance, m (0: off)",
+                   io::kNonNegative)
+            .field("obstacle_stop_distance_m", &S::obstacle_stop_distance_m,
+                   "stopped this far from it, m", io::kNonNegative)
+            .field("corridor_half_width_m", &S::corridor_half_width_m,
+                   "obstacles within this of the heading line count, m", io::kPositive)
             .field("stop_spacing_m", &S::stop_spacing_m,
                    "stop-and-map after this distance on a leg and at waypoints, m (0: waypoints)",
                    io::kNonNegative)

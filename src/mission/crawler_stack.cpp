@@ -38,6 +38,15 @@ void CrawlerStackConfig::validate(std::string_view prefix) const {
     config_checks::require_positive(max_uwb_age_s, prefix, "max_uwb_age_s");
     config_checks::require_positive(max_position_sigma_m, prefix, "max_position_sigma_m");
     config_checks::require_non_negative(anchor_hidden_margin_m, prefix, "anchor_hidden_margin_m");
+    config_checks::require_non_negative(obstacle_slow_distance_m, prefix,
+                                        "obstacle_slow_distance_m");
+    config_checks::require_non_negative(obstacle_stop_distance_m, prefix,
+                                        "obstacle_stop_distance_m");
+    if (obstacle_slow_distance_m > 0.0 && obstacle_slow_distance_m <= obstacle_stop_distance_m) {
+        config_checks::require(false, prefix, "obstacle_slow_distance_m", obstacle_slow_distance_m,
+                               "0 (off) or > obstacle_stop_distance_m");
+    }
+    config_checks::require_positive(corridor_half_width_m, prefix, "corridor_half_width_m");
     config_checks::require_non_negative(stop_spacing_m, prefix, "stop_spacing_m");
     config_checks::require_non_negative(stop_settle_s, prefix, "stop_settle_s");
     config_checks::require(std::isfinite(stop_duration_s) && stop_duration_s > stop_settle_s,
@@ -202,6 +211,10 @@ void CrawlerStack::apply(const control::OperatorCommand& command, double t_s,
             return change_state(MissionState::kPaused, "pause: standing still", t_s, events);
         case OperatorCommandType::kResume:
             if (state_ != MissionState::kPaused) return refuse("not paused");
+            if (blocking_) {  // the operator judged the obstacle passable
+                cleared_world_m_.push_back(obstacles_.at(*blocking_).centroid_world_m);
+                blocking_.reset();
+            }
             return change_state(MissionState::kRunning, "resume", t_s, events);
         case OperatorCommandType::kAbort:
             if (state_ == MissionState::kAborted) return refuse("already aborted");
@@ -260,6 +273,7 @@ CrawlerStackCommand CrawlerStack::command(
     const bool moving_allowed = state_ == MissionState::kRunning && !wheels_lost_ && usable;
     if (moving_allowed && !calibrating(t_s, out.events) && !stopped_to_map(out, t_s)) {
         follow(out, t_s);
+        if (state_ == MissionState::kRunning) slow_for_obstacles(out, t_s);
         count_distance();
     }
     if (!std::isfinite(out.forward_mps) || !std::isfinite(out.yaw_rate_radps)) {

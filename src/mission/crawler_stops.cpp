@@ -3,8 +3,16 @@
 
 #include <scantling/mission/crawler_stack.hpp>
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
 namespace scantling::mission {
 namespace {
+
+/// Obstacles mapped this close to one the operator cleared are the same one seen again, or its
+/// occlusion shadow (an enclosed region without returns behind it, marked negative), m.
+constexpr double kClearedRadiusM = 0.25;
 
 std::size_t count(const std::vector<perception::MappedObstacle>& obstacles,
                   perception::SurfaceLabel label) {
@@ -38,6 +46,41 @@ void CrawlerStack::add_image(const io::RgbImage& image, const PinholeIntrinsics&
     if (texture_->in_stop()) texture_->add_stop_image(image, intrinsics, T_map_camera);
 }
 
+void CrawlerStack::slow_for_obstacles(CrawlerStackCommand& out, double t_s) {
+    const double slow_m = config_.obstacle_slow_distance_m;
+    if (slow_m <= 0.0 || obstacles_.empty()) return;
+    const Eigen::Isometry3d T_body_world = filter_.estimate().T_world_body.inverse();
+    double nearest_m = std::numeric_limits<double>::infinity();
+    std::size_t nearest = 0;
+    for (std::size_t i = 0; i < obstacles_.size(); ++i) {
+        const perception::MappedObstacle& o = obstacles_[i];
+        const bool cleared = std::any_of(
+            cleared_world_m_.begin(), cleared_world_m_.end(),
+            [&](const auto& c) { return (c - o.centroid_world_m).norm() < kClearedRadiusM; });
+        if (cleared) continue;
+        const Eigen::Vector3d p = T_body_world * o.centroid_world_m;
+        const double radius_m = 0.5 * (o.max_body_xy_m - o.min_body_xy_m).norm();
+        if (p.x() <= 0.0 || std::abs(p.y()) > config_.corridor_half_width_m + radius_m) continue;
+        if (p.x() - radius_m < nearest_m) {
+            nearest_m = p.x() - radius_m;
+            nearest = i;
+        }
+    }
+    const double stop_m = config_.obstacle_stop_distance_m;
+    const double scale = std::clamp((nearest_m - stop_m) / (slow_m - stop_m), 0.0, 1.0);
+    out.forward_mps *= scale;
+    if (scale > 0.0) return;
+    out.yaw_rate_radps = 0.0;
+    blocking_ = nearest;
+    const Eigen::Vector3d& p = obstacles_[nearest].centroid_world_m;
+    out.events.push_back(
+        {t_s, "obstacle_blocks_path",
+         fmt::format(R"({{"at":[{:.3f},{:.3f},{:.3f}],"distance_m":{:.3f},"reason":"an )"
+                     R"(obstacle ahead: paused for the operator, a resume drives on"}})",
+                     p.x(), p.y(), p.z(), nearest_m)});
+    change_state(control::MissionState::kPaused, "obstacle ahead", t_s, out.events);
+}
+
 void CrawlerStack::count_distance() {
     const Eigen::Vector3d p = filter_.estimate().T_world_body.translation();
     if (last_p_) driven_m_ += (p - *last_p_).norm();
@@ -67,6 +110,7 @@ bool CrawlerStack::stopped_to_map(CrawlerStackCommand& out, double t_s) {
                                                              out.stop->T_world_body_map);
         }
         out.events.push_back({t_s, "stop_mapped", stop_json(*out.stop)});
+        obstacles_.insert(obstacles_.end(), out.stop->obstacles.begin(), out.stop->obstacles.end());
     }
     stop_began_s_.reset();
     driven_m_ = 0.0;

@@ -93,6 +93,13 @@ struct CrawlerStackConfig {
     /// under the 5 × 2 m plate gave 0.114 m RMS and no event). Exact on a plate and outside a
     /// convex shell; inside a tank every anchor is in front.
     double anchor_hidden_margin_m = 0.05;
+    /// Obstacles mapped at the stops slow the crawler down in proportion to their distance ahead
+    /// (SPEC §6: no swerving), from obstacle_slow_distance_m to a stop at
+    /// obstacle_stop_distance_m, m (slow 0: off; stop >= 0, slow > stop), counting those whose
+    /// footprint comes within corridor_half_width_m of the body's x axis, m, > 0.
+    double obstacle_slow_distance_m = 0.5;
+    double obstacle_stop_distance_m = 0.1;
+    double corridor_half_width_m = 0.12;
     /// Stop-and-map (SPEC §6), with a LiDAR mounted (T_body_lidar): the crawler stops after
     /// every stop_spacing_m driven on a leg and at every waypoint, m, >= 0 (0: at waypoints only).
     double stop_spacing_m = 1.0;
@@ -175,6 +182,8 @@ class CrawlerStack {
     bool calibrating(double t_s, std::vector<StackEvent>& events);
     /// True while a stop-and-map stop holds the crawler; opens, feeds and closes the stops.
     bool stopped_to_map(CrawlerStackCommand& out, double t_s);
+    /// Scales the command for the obstacles ahead; pauses with an event when blocked.
+    void slow_for_obstacles(CrawlerStackCommand& out, double t_s);
     void count_distance();
 
     CrawlerStackConfig config_;
@@ -205,7 +214,13 @@ class CrawlerStack {
     std::optional<double> stop_began_s_;  ///< the open stop's start
     bool stop_due_ = false;               ///< a waypoint was reached: stop before going on
     std::vector<int> hidden_anchors_;     ///< anchors behind the surface now (event sent)
-    double driven_m_ = 0.0;               ///< estimated distance since the last stop
+    /// Obstacles of the stops, and the one that paused the crawler, if any.
+    std::vector<perception::MappedObstacle> obstacles_;
+    std::optional<std::size_t> blocking_;
+    /// Where the operator let the crawler go on: obstacles mapped there (at any stop) no
+    /// longer count.
+    std::vector<Eigen::Vector3d> cleared_world_m_;
+    double driven_m_ = 0.0;  ///< estimated distance since the last stop
     std::optional<Eigen::Vector3d> last_p_;
 };
 
