@@ -200,7 +200,15 @@ const io::ConfigSchema<perception::StopAndMapConfig>& stop_and_map_schema() {
             .section("icp", &S::icp, stop_icp_schema())
             .field("correct_pose", &S::correct_pose, "register consecutive stop clouds")
             .field("max_points", &S::max_points, "most points accumulated in one stop")
-            .field("min_icp_points", &S::min_icp_points, "obstacle points a registration needs");
+            .field("min_icp_points", &S::min_icp_points, "obstacle points a registration needs")
+            .field("missing_returns_are_negative", &S::missing_returns_are_negative,
+                   "no return where the LiDAR should see the surface: a hole or an edge")
+            .field("lidar_fov_rad", &S::lidar_fov_rad, "the LiDAR's full cone angle, rad",
+                   io::kPositive)
+            .field("fov_margin_rad", &S::fov_margin_rad, "off the cone's rim, rad",
+                   io::kNonNegative)
+            .field("expected_range_m", &S::expected_range_m, "farthest expected cell, m",
+                   io::kPositive);
         return s;
     }();
     return schema;

@@ -45,6 +45,10 @@ void StopAndMapConfig::validate(std::string_view prefix) const {
     icp.validate(std::string(prefix) + ".icp");
     config_checks::require(max_points > 0, prefix, "max_points", max_points, "> 0");
     config_checks::require(min_icp_points >= 6, prefix, "min_icp_points", min_icp_points, ">= 6");
+    config_checks::require(lidar_fov_rad > 0.0 && lidar_fov_rad <= 3.14159265358979323846, prefix,
+                           "lidar_fov_rad", lidar_fov_rad, "in (0, pi]");
+    config_checks::require_non_negative(fov_margin_rad, prefix, "fov_margin_rad");
+    config_checks::require_positive(expected_range_m, prefix, "expected_range_m");
 }
 
 std::vector<MappedObstacle> map_obstacles(const SurfaceObstacles& detection,
@@ -144,7 +148,14 @@ StopMap StopMapper::finish(double t_s) {
     stop.end_s = t_s;
     stop.num_frames = open.num_frames;
     stop.T_world_body_localisation = open.T_world_body;
-    stop.detection = detect_surface_obstacles(open.cloud_body, config_.obstacles);
+    std::optional<ExpectedView> view;
+    if (config_.missing_returns_are_negative) {
+        view = ExpectedView{.T_body_sensor = T_body_lidar_,
+                            .half_fov_rad = 0.5 * config_.lidar_fov_rad,
+                            .margin_rad = config_.fov_margin_rad,
+                            .max_range_m = config_.expected_range_m};
+    }
+    stop.detection = detect_surface_obstacles(open.cloud_body, config_.obstacles, view);
     correct(stop);
     stop.obstacles = map_obstacles(stop.detection, stop.T_world_body_map);
     previous_ = Previous{.cloud_body = stop.detection.points,

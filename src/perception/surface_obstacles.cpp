@@ -1,7 +1,10 @@
 #include <scantling/core/config_checks.hpp>
+#include <scantling/core/error.hpp>
 #include <scantling/core/random.hpp>
 #include <scantling/core/voxel_grid.hpp>
 #include <scantling/perception/surface_obstacles.hpp>
+
+#include "detail/missing_returns.hpp"
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
@@ -426,11 +429,15 @@ std::vector<ObstacleCluster> find_clusters(SurfaceGrid& grid, std::size_t min_cl
     return clusters;
 }
 
-void rasterise(SurfaceObstacles& result, const SurfaceObstaclesConfig& config) {
+void rasterise(SurfaceObstacles& result, const SurfaceObstaclesConfig& config,
+               const std::optional<ExpectedView>& view) {
     result.grid = empty_grid(config);
     if (result.status == SurfaceStatus::kOk) require_support(result, result.grid, config);
     fill_cells(result.grid, result);
     erode_rim(result, config.rim_cells);
+    if (view && result.status == SurfaceStatus::kOk) {
+        detail::mark_missing_returns(result.grid, result.surface, *view);
+    }
     if (config.enclosed_unknown_is_negative) mark_enclosed_unknown(result.grid, config);
     result.clusters = find_clusters(result.grid, config.min_cluster_cells);
 }
@@ -486,7 +493,15 @@ Eigen::Vector2d SurfaceGrid::cell_centre(int ix, int iy) const {
 }
 
 SurfaceObstacles detect_surface_obstacles(const PointCloud& cloud_body,
-                                          const SurfaceObstaclesConfig& config) {
+                                          const SurfaceObstaclesConfig& config,
+                                          const std::optional<ExpectedView>& view) {
+    if (view && (!(view->half_fov_rad > 0.0 && view->half_fov_rad <= std::numbers::pi / 2) ||
+                 !(view->margin_rad >= 0.0) || !(view->max_range_m > 0.0) ||
+                 !view->T_body_sensor.matrix().allFinite())) {
+        throw InputError(
+            "detect_surface_obstacles: the expected view needs a finite mount, "
+            "half_fov_rad in (0, pi/2], margin_rad >= 0 and max_range_m > 0");
+    }
     config.validate();
     check_consistent(cloud_body, "detect_surface_obstacles");
     SurfaceObstacles result;
@@ -510,7 +525,7 @@ SurfaceObstacles detect_surface_obstacles(const PointCloud& cloud_body,
         result.labels.assign(points.size(), SurfaceLabel::kUncertain);
         result.distances_m.assign(points.size(), 0.0);
     }
-    rasterise(result, config);
+    rasterise(result, config, view);
     return result;
 }
 

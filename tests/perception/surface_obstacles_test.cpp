@@ -464,6 +464,55 @@ TEST(SurfaceObstacles, MarksAnEnclosedRegionWithoutReturnsAsNegative) {
     EXPECT_EQ(marked.grid.label_at(Eigen::Vector2d(2.9, 2.9)), SurfaceLabel::kUnknown);
 }
 
+TEST(SurfaceObstacles, MissingReturnsWhereTheSensorLooksAreNegative) {
+    // The plate ends at x = 1 (no point beyond), a 5 cm box stands at x = 0.5 with no return
+    // in its shadow behind it, and nothing comes back from x < -1.5 (behind the sensor).
+    const Scene scene = plate_scene();
+    PointCloud cloud;
+    for (const auto& p : scene.cloud.points) {
+        const bool beyond_edge = p.x() > 1.0 || p.x() < -1.5;
+        const bool box = p.x() >= 0.5 && p.x() <= 0.6 && std::abs(p.y()) <= 0.05;
+        const bool shadow = p.x() > 0.6 && p.x() <= 0.9 && std::abs(p.y()) <= 0.05;
+        if (beyond_edge || shadow) continue;
+        cloud.points.emplace_back(p.x(), p.y(), box ? 0.05 : p.z());
+    }
+    // A LiDAR 0.3 m up at the origin, pitched 25° down, 70° cone.
+    ExpectedView view;
+    view.T_body_sensor.translation() = Eigen::Vector3d(0.0, 0.0, 0.3);
+    view.T_body_sensor.linear() =
+        Eigen::AngleAxisd(25.0 * std::numbers::pi / 180.0, Eigen::Vector3d::UnitY())
+            .toRotationMatrix();
+    view.half_fov_rad = 35.0 * std::numbers::pi / 180.0;
+    SurfaceObstaclesConfig config;
+    config.enclosed_unknown_is_negative = false;  // the missing-returns rule alone
+    config.min_cluster_cells = 2;  // a 2 cm cell the random sampling left empty is no hole
+    const auto without = detect_surface_obstacles(cloud, config);
+    const auto with = detect_surface_obstacles(cloud, config, view);
+    // Beyond the edge, in the cone and within 1.5 m: negative, where it was unknown.
+    EXPECT_EQ(without.grid.label_at({1.2, 0.0}), SurfaceLabel::kUnknown);
+    EXPECT_EQ(with.grid.label_at({1.2, 0.3}), SurfaceLabel::kNegative);
+    EXPECT_EQ(with.grid.label_at({1.2, 0.5}), SurfaceLabel::kNegative);
+    // Beyond 1.5 m from the sensor, or outside the cone (behind it): not expected, unknown.
+    EXPECT_EQ(with.grid.label_at({1.7, 0.0}), SurfaceLabel::kUnknown);
+    EXPECT_EQ(with.grid.label_at({1.2, 1.3}), SurfaceLabel::kUnknown);
+    EXPECT_EQ(with.grid.label_at({-1.7, 0.0}), SurfaceLabel::kUnknown);
+    // The box's shadow is not a hole: the box is in the way.
+    EXPECT_EQ(with.grid.label_at({0.5 + 0.055, 0.0}), SurfaceLabel::kPositive);
+    EXPECT_EQ(with.grid.label_at({0.75, 0.0}), SurfaceLabel::kUnknown);
+    // The band beyond the edge, cut in two by the box's shadow, its near side at x = 1.
+    std::size_t negatives = 0;
+    for (const auto& c : with.clusters) {
+        if (c.label != SurfaceLabel::kNegative) continue;
+        ++negatives;
+        EXPECT_NEAR(c.min_xy_m.x(), 1.0, 0.03);
+        EXPECT_GT(c.num_cells, 400u);
+    }
+    EXPECT_EQ(negatives, 2u);
+    // A bad view is refused.
+    view.half_fov_rad = 0.0;
+    EXPECT_THROW(detect_surface_obstacles(cloud, config, view), InputError);
+}
+
 // ---- column_median ------------------------------------------------------------------------
 
 /// Fraction of the points labelled positive or negative.

@@ -43,9 +43,10 @@
 /// @note Deterministic: the same cloud, config and seed give the same result for any
 /// `parallel.num_threads` (only the voxel grid runs in parallel, and it is order-independent).
 
-#include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string_view>
 #include <vector>
 
@@ -169,12 +170,29 @@ struct SurfaceObstacles {
     std::vector<ObstacleCluster> clusters;  ///< positive ones first, each in grid scan order
 };
 
+/// Where the LiDAR should have seen the surface (optional input of detect_surface_obstacles):
+/// the cells of the fitted surface (z = 0 without one) inside its cone, less a margin, and
+/// within max_range_m of it. Such a cell without a return, and not in the shadow of a positive
+/// cell (seen from the sensor's foot), is negative: the surface is not there (a hole, a plate's
+/// edge). Why: a hole in a plate with nothing beneath it, or the plate's end, returns nothing,
+/// and the enclosed-unknown rule only sees the holes that observed cells surround on all sides;
+/// measured on the crawler's plate, it found 0 of 21 edges and 0 of 1 holes (docs/results.md).
+struct ExpectedView {
+    Eigen::Isometry3d T_body_sensor = Eigen::Isometry3d::Identity();  ///< x the boresight
+    double half_fov_rad = 0.0;  ///< cone half angle about x, (0, π/2]
+    /// Off the cone's rim, where the noise moves returns out of their cells (rim_cells), rad.
+    double margin_rad = 0.05;
+    /// Farther cells are not expected: a rosette's returns thin out with range, > 0.
+    double max_range_m = 1.5;
+};
+
 /// Labels the accumulated stop cloud (body frame; see the file comment). An empty cloud, or one
 /// with only non-finite points, gives status kTooFewPoints (a sensor that returned nothing is
 /// an outcome, not a contract violation); non-finite points are skipped and counted (LiDAR
 /// drivers mark dropouts with NaN). Throws ConfigError for a bad config and InputError for a
 /// cloud whose optional fields do not match its points.
 SurfaceObstacles detect_surface_obstacles(const PointCloud& cloud_body,
-                                          const SurfaceObstaclesConfig& config = {});
+                                          const SurfaceObstaclesConfig& config = {},
+                                          const std::optional<ExpectedView>& view = std::nullopt);
 
 }  // namespace scantling::perception
