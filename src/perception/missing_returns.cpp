@@ -8,16 +8,6 @@
 namespace scantling::perception::detail {
 namespace {
 
-/// Height of the surface under (x, y): z = poly + g z², by fixed point (|g z| ≪ 1 in view).
-double height_m(const QuadricSurface& s, const Eigen::Vector2d& xy) {
-    const double x = xy.x(), y = xy.y();
-    const double poly =
-        s.xx * x * x + s.xy * x * y + s.yy * y * y + s.x_slope * x + s.y_slope * y + s.offset_m;
-    double z = poly;
-    for (int i = 0; i < 3; ++i) z = poly + s.zz * z * z;
-    return std::isfinite(z) ? z : poly;
-}
-
 bool expected(const Eigen::Vector3d& p_body, const ExpectedView& view,
               const Eigen::Isometry3d& T_sensor_body) {
     const Eigen::Vector3d d = T_sensor_body * p_body;
@@ -58,7 +48,7 @@ void mark_missing_returns(SurfaceGrid& grid, const QuadricSurface& surface,
             const std::size_t c = static_cast<std::size_t>(iy * side + ix);
             if (before[c] != SurfaceLabel::kUnknown) continue;
             const Eigen::Vector2d xy = grid.cell_centre(ix, iy);
-            const Eigen::Vector3d p(xy.x(), xy.y(), height_m(surface, xy));
+            const Eigen::Vector3d p(xy.x(), xy.y(), surface.height_m(xy));
             if (!expected(p, view, T_sensor_body) || shadowed(grid, before, foot, xy)) continue;
             grid.cells[c] = SurfaceLabel::kNegative;
         }

@@ -14,17 +14,6 @@ namespace {
 
 bool finite(const Eigen::Isometry3d& T) { return T.matrix().allFinite(); }
 
-/// Height of the fitted surface under (x, y): z = poly(x, y) + g z², solved by fixed point
-/// (|g z| ≪ 1 near the robot, so two rounds are exact to micrometres).
-double surface_height_m(const QuadricSurface& s, const Eigen::Vector2d& xy) {
-    const double x = xy.x(), y = xy.y();
-    const double poly =
-        s.xx * x * x + s.xy * x * y + s.yy * y * y + s.x_slope * x + s.y_slope * y + s.offset_m;
-    double z = poly;
-    for (int i = 0; i < 3; ++i) z = poly + s.zz * z * z;
-    return std::isfinite(z) ? z : poly;
-}
-
 /// The points labelled positive or negative: what constrains the motion in the surface's plane
 /// (see the file comment).
 PointCloud obstacle_points(const SurfaceObstacles& detection) {
@@ -57,7 +46,7 @@ std::vector<MappedObstacle> map_obstacles(const SurfaceObstacles& detection,
     out.reserve(detection.clusters.size());
     for (const ObstacleCluster& c : detection.clusters) {
         const Eigen::Vector3d p_body(c.centroid_xy_m.x(), c.centroid_xy_m.y(),
-                                     surface_height_m(detection.surface, c.centroid_xy_m));
+                                     detection.surface.height_m(c.centroid_xy_m));
         out.push_back({.label = c.label,
                        .centroid_world_m = T_world_body * p_body,
                        .min_body_xy_m = c.min_xy_m,

@@ -479,6 +479,14 @@ Eigen::Vector3d QuadricSurface::gradient(const Eigen::Vector3d& p) const {
             2.0 * zz * p.z() - 1.0};
 }
 
+double QuadricSurface::height_m(const Eigen::Vector2d& p) const {
+    const double x = p.x(), y = p.y();
+    const double poly = xx * x * x + xy * x * y + yy * y * y + x_slope * x + y_slope * y + offset_m;
+    double z = poly;
+    for (int i = 0; i < 3; ++i) z = poly + zz * z * z;
+    return std::isfinite(z) ? z : poly;
+}
+
 double QuadricSurface::signed_distance_m(const Eigen::Vector3d& p) const {
     return -residual(p) / gradient(p).norm();
 }

@@ -117,6 +117,9 @@ struct QuadricSurface {
     Eigen::Vector3d gradient(const Eigen::Vector3d& p) const;
     /// −F/|∇F|: signed distance to the surface to first order, > 0 on the free side, m.
     double signed_distance_m(const Eigen::Vector3d& p) const;
+    /// The surface's z under (x, y): z = poly(x, y) + g z², by fixed point (|g z| ≪ 1 near the
+    /// robot: three rounds are exact to micrometres), m.
+    double height_m(const Eigen::Vector2d& xy) const;
 };
 
 /// What a point or a grid cell is.
