@@ -21,9 +21,9 @@
 /// bare plate), a registration that did not converge, hit a cap, or is degenerate among x, y,
 /// yaw (a single straight weld bead leaves the motion along it free;
 /// registration::analyze_degeneracy with the free basis) gives C = identity: the chain then
-/// carries the localisation's relative motion, and `icp_applied` says so. Without absolute ranges the chain
-/// drifts as the localisation's relative motion does; with UWB the localisation is absolute and
-/// the chain is the comparison the SPEC reports (docs/results.md).
+/// carries the localisation's relative motion, and `icp_applied` says so. Without absolute ranges
+/// the chain drifts as the localisation's relative motion does; with UWB the localisation is
+/// absolute and the chain is the comparison the SPEC reports (docs/results.md).
 ///
 /// The obstacles of a stop are its positive and negative clusters, placed in the world through
 /// the stop's map pose at the fitted surface's height under their centroid.
