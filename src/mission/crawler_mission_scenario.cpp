@@ -12,6 +12,7 @@
 #include <scantling/io/config_node.hpp>
 #include <scantling/io/config_schema.hpp>
 #include <scantling/sim/scenario_schema.hpp>
+#include <scantling/sim/sensor_configs.hpp>
 
 #include "detail/config_nodes.hpp"
 #include "detail/mission_schemas.hpp"
@@ -34,12 +35,16 @@ struct RectangleMission {
 };
 
 /// `texture_map:` of a crawler document: the map's extent in its frame, placed in the world.
+/// Its defaults are perception::TextureMapConfig's (the YAML is flat, the map pose a PoseSpec).
 struct TextureDocument {
     bool enabled = true;  ///< the section's presence enables it
-    double cell_size_m = 0.005;
-    double min_x_m = -1.0, max_x_m = 1.0, min_y_m = -1.0, max_y_m = 1.0;
-    double max_range_m = 1.5;
-    bool uncertain_is_obstacle = false;
+    double cell_size_m = perception::TextureMapConfig{}.cell_size_m;
+    double min_x_m = perception::TextureMapConfig{}.min_x_m;
+    double max_x_m = perception::TextureMapConfig{}.max_x_m;
+    double min_y_m = perception::TextureMapConfig{}.min_y_m;
+    double max_y_m = perception::TextureMapConfig{}.max_y_m;
+    double max_range_m = perception::TextureMapConfig{}.max_range_m;
+    bool uncertain_is_obstacle = perception::TextureMapConfig{}.uncertain_is_obstacle;
     sim::PoseSpec map_pose{};
 };
 
@@ -203,8 +208,6 @@ const io::ConfigSchema<perception::StopAndMapConfig>& stop_and_map_schema() {
             .field("min_icp_points", &S::min_icp_points, "obstacle points a registration needs")
             .field("missing_returns_are_negative", &S::missing_returns_are_negative,
                    "no return where the LiDAR should see the surface: a hole or an edge")
-            .field("lidar_fov_rad", &S::lidar_fov_rad, "the LiDAR's full cone angle, rad",
-                   io::kPositive)
             .field("fov_margin_rad", &S::fov_margin_rad, "off the cone's rim, rad",
                    io::kNonNegative)
             .field("expected_range_m", &S::expected_range_m, "farthest expected cell, m",
@@ -283,7 +286,8 @@ const io::ConfigSchema<RectangleMission>& mission_schema() {
     return schema;
 }
 
-/// The robot knows the surveyed UWB anchors, its tag's, its IMU's and its LiDAR's mounts.
+/// The robot knows the surveyed UWB anchors, its tag's, its IMU's and its LiDAR's mounts, and
+/// its LiDAR's cone.
 void calibrate(CrawlerMissionScenario& m) {
     for (const sim::SensorSpec& sensor : m.simulation.sensors) {
         if (sensor.type == sim::SensorType::kImu) {
@@ -296,7 +300,10 @@ void calibrate(CrawlerMissionScenario& m) {
             m.stack.T_body_camera = sensor.T_body_sensor.to_isometry();
         }
         if (sensor.type == sim::SensorType::kRosetteLidar) {
-            m.stack.T_body_lidar = sensor.T_body_sensor.to_isometry();
+            const sim::RosetteLidarConfig lidar =
+                sim::detail::rosette_config(sensor, "simulation.sensors");
+            m.stack.T_body_lidar = lidar.T_body_sensor;
+            m.stack.stop_and_map.lidar_fov_rad = lidar.fov_rad;
         }
         if (sensor.type == sim::SensorType::kUwb) {
             m.stack.particle_filter.p_body_uwb_tag_m =

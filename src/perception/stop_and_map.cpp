@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include <scantling/core/config_checks.hpp>
 #include <scantling/core/error.hpp>
@@ -34,7 +35,7 @@ void StopAndMapConfig::validate(std::string_view prefix) const {
     icp.validate(std::string(prefix) + ".icp");
     config_checks::require(max_points > 0, prefix, "max_points", max_points, "> 0");
     config_checks::require(min_icp_points >= 6, prefix, "min_icp_points", min_icp_points, ">= 6");
-    config_checks::require(lidar_fov_rad > 0.0 && lidar_fov_rad <= 3.14159265358979323846, prefix,
+    config_checks::require(lidar_fov_rad > 0.0 && lidar_fov_rad <= std::numbers::pi, prefix,
                            "lidar_fov_rad", lidar_fov_rad, "in (0, pi]");
     config_checks::require_non_negative(fov_margin_rad, prefix, "fov_margin_rad");
     config_checks::require_positive(expected_range_m, prefix, "expected_range_m");

@@ -15,6 +15,14 @@ Matrix6d adjoint_of_translation(const Eigen::Vector3d& c) {
     return A;
 }
 
+/// delta = to_origin · u: the twist at the origin of a twist u taken about `centroid` with its
+/// rotation scaled by `radius_m` (see below).
+Matrix6d to_origin_of(const Eigen::Vector3d& centroid, double radius_m) {
+    Vector6d scale_inv;
+    scale_inv << 1.0, 1.0, 1.0, 1.0 / radius_m, 1.0 / radius_m, 1.0 / radius_m;
+    return adjoint_of_translation(centroid) * scale_inv.asDiagonal();
+}
+
 }  // namespace
 
 // Why move and scale before the eigen-decomposition: about a far-away origin every rotation
@@ -23,10 +31,7 @@ Matrix6d adjoint_of_translation(const Eigen::Vector3d& c) {
 // translation that move the points equally have equal eigenvalues.
 DegeneracyReport analyze_degeneracy(const Matrix6d& H, const Eigen::Vector3d& centroid_target,
                                     double radius_m, double threshold) {
-    const Matrix6d A = adjoint_of_translation(centroid_target);
-    Vector6d scale_inv;
-    scale_inv << 1.0, 1.0, 1.0, 1.0 / radius_m, 1.0 / radius_m, 1.0 / radius_m;
-    const Matrix6d to_origin = A * scale_inv.asDiagonal();  // delta = to_origin * u
+    const Matrix6d to_origin = to_origin_of(centroid_target, radius_m);
     const Matrix6d H_u = to_origin.transpose() * H * to_origin;
     const Eigen::SelfAdjointEigenSolver<Matrix6d> solver(0.5 * (H_u + H_u.transpose()));
     DegeneracyReport report;
@@ -48,10 +53,7 @@ DegeneracyReport analyze_degeneracy(const Matrix6d& H, const Eigen::Vector3d& ce
     if (k >= 6) return analyze_degeneracy(H, centroid_target, radius_m, threshold);
     if (k == 0)
         return {.eigenvalues = Vector6d::Ones(), .weak_directions = {}, .degenerate = false};
-    const Matrix6d A = adjoint_of_translation(centroid_target);
-    Vector6d scale_inv;
-    scale_inv << 1.0, 1.0, 1.0, 1.0 / radius_m, 1.0 / radius_m, 1.0 / radius_m;
-    const Matrix6d to_origin = A * scale_inv.asDiagonal();
+    const Matrix6d to_origin = to_origin_of(centroid_target, radius_m);
     const Matrix6d H_u = to_origin.transpose() * H * to_origin;
     // The free directions in the scaled coordinates u (delta = to_origin u), orthonormalised so
     // that the reduced eigenvalues keep the scale of the six-direction analysis.

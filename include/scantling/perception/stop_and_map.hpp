@@ -34,6 +34,7 @@
 
 #include <Eigen/Geometry>
 #include <cstddef>
+#include <numbers>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -55,10 +56,10 @@ struct StopAndMapConfig {
     /// Obstacle points each stop needs for a registration, >= 6 (see the file comment).
     std::size_t min_icp_points = 50;
     /// Cells the LiDAR should have seen and did not are holes or edges (surface_obstacles.hpp,
-    /// ExpectedView), with the LiDAR's full cone angle (Livox Mid-70: 70.4°), the margin off its
-    /// rim and the farthest such cell.
+    /// ExpectedView), with the LiDAR's full cone angle (Livox Mid-70: 70.4°; a crawler mission
+    /// takes its sensor's from the calibration), the margin off its rim and the farthest cell.
     bool missing_returns_are_negative = false;
-    double lidar_fov_rad = 70.4 * 3.14159265358979323846 / 180.0;
+    double lidar_fov_rad = 70.4 * std::numbers::pi / 180.0;
     double fov_margin_rad = 0.05;
     double expected_range_m = 1.5;
 
