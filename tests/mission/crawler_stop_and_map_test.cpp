@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <scantling/core/error.hpp>
 #include <scantling/io/mission_log.hpp>
 #include <scantling/io/tum.hpp>
 #include <scantling/mission/crawler_mission.hpp>
@@ -65,6 +66,15 @@ stack:
   stop_and_map:
     obstacles: {column_median: true, rim_cells: 2, min_cluster_cells: 2}
 )";
+
+/// kPlate with its texture_map section replaced by `section`.
+std::string with_texture(const std::string& section) {
+    std::string text = kPlate;
+    const std::size_t at = text.find("texture_map: ");
+    const std::size_t end = text.find('\n', at);
+    text.replace(at, end - at, "texture_map: " + section);
+    return text;
+}
 
 std::size_t files_in(const fs::path& dir) {
     if (!fs::exists(dir)) return 0;
@@ -168,6 +178,35 @@ TEST(CrawlerStopAndMap, AnObstacleOnThePathSlowsThenPausesForTheOperator) {
     }
     EXPECT_LT(v_half_way, m.stack.follower.v_ref_mps);
     EXPECT_TRUE(r.completed);  // resumed and finished
+}
+
+TEST(CrawlerStopAndMap, BadStopAndTextureSettingsAreClearErrors) {
+    const auto message = [](const std::string& text) -> std::string {
+        try {
+            parse_crawler_mission_scenario(text, "bad.yaml");
+        } catch (const Error& e) {
+            return e.what();
+        }
+        return "accepted";
+    };
+    // Slowing down from closer than the stop: the crawler would stop without slowing.
+    std::string text = kPlate;
+    text.replace(text.find("obstacle_slow_distance_m: 0.0"),
+                 std::string("obstacle_slow_distance_m: 0.0").size(),
+                 "obstacle_slow_distance_m: 0.05");
+    EXPECT_NE(message(text).find("obstacle_slow_distance_m"), std::string::npos) << message(text);
+    // A stop shorter than its settling time.
+    EXPECT_NE(message(kPlate + "  stop_duration_s: 0.4\n").find("stop_duration_s"),
+              std::string::npos);
+    // An unknown texture-map key, and an extent the wrong way round.
+    const std::string unknown =
+        message(with_texture("{cell_size_m: 0.01, min_x_m: -0.5, max_x_m: 0.9, min_y_m: -0.8, "
+                             "max_y_m: 1.2, colour: red}"));
+    EXPECT_NE(unknown.find("colour"), std::string::npos) << unknown;
+    const std::string reversed =
+        message(with_texture("{cell_size_m: 0.01, min_x_m: 0.9, max_x_m: -0.5, min_y_m: -0.8, "
+                             "max_y_m: 1.2}"));
+    EXPECT_NE(reversed.find("texture_map"), std::string::npos) << reversed;
 }
 
 }  // namespace
