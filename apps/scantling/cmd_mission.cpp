@@ -167,18 +167,29 @@ void run_rov_mission(const MissionOptions& options, std::ostream& out) {
 std::string crawler_summary_text(const mission::CrawlerMissionScenario& m,
                                  const mission::CrawlerMissionResult& r) {
     std::string text = fmt::format("recording: {}\n", r.directory);
+    std::string tasks;
+    for (const planning::SurfaceTask& t : m.tasks) {
+        tasks += (tasks.empty() ? "" : ", ") + std::string(planning::to_string(t.type));
+        if (t.type == planning::SurfaceTaskType::kRectangle) {
+            tasks += fmt::format(" {:.2f} x {:.2f} m", t.rectangle.width_m, t.rectangle.height_m);
+        }
+    }
+    text += fmt::format("scenario: {} (world {}, seed {}, crawler tasks: {})\n", m.name,
+                        sim::to_string(m.simulation.world.type), m.simulation.seed, tasks);
+    if (r.transects > 0) {
+        text += fmt::format("rectangle: {} transects {:.3f} m apart\n", r.transects, r.step_m);
+    }
     text += fmt::format(
-        "scenario: {} (world {}, seed {}, crawler rectangle {:.2f} x {:.2f} m, {} transects "
-        "{:.3f} m apart)\n",
-        m.name, sim::to_string(m.simulation.world.type), m.simulation.seed, m.rectangle.width_m,
-        m.rectangle.height_m, r.transects, r.step_m);
-    text += fmt::format("final_state: {}\nwaypoints_reached: {} / {}\nmission_time: {:.1f} s\n",
-                        control::to_string(r.final_state), r.waypoints_reached, 2 * r.transects,
-                        r.mission_time_s);
+        "final_state: {}\ntasks: {} done, {} failed of {}\nwaypoints_reached: {}\n"
+        "mission_time: {:.1f} s\n",
+        control::to_string(r.final_state), r.tasks_done, r.tasks_failed, r.tasks,
+        r.waypoints_reached, r.mission_time_s);
     text += fmt::format("cross_track: mean {:.3f} m, max {:.3f} m ({} samples)\n",
                         r.cross_track_mean_m, r.cross_track_max_m, r.cross_track_samples);
-    text += fmt::format("coverage: {:.1f} % of the rectangle ({:.2f} m swath)\n",
-                        100.0 * r.coverage, m.swath_width_m);
+    if (r.transects > 0) {
+        text += fmt::format("coverage: {:.1f} % of the rectangle ({:.2f} m swath)\n",
+                            100.0 * r.coverage, m.swath_width_m);
+    }
     text += fmt::format("estimate_error: rms {:.3f} m, max {:.3f} m, heading rms {:.2f} deg\n",
                         r.position_error_rms_m, r.position_error_max_m,
                         r.yaw_error_rms_rad * 180.0 / M_PI);

@@ -74,12 +74,8 @@ std::vector<Eigen::Vector3d> rectangle_cells(const planning::SurfaceRectangleReq
 /// The figures measured on the truth while the loop runs.
 class CrawlerMetrics {
   public:
-    CrawlerMetrics(const CrawlerStack& stack, const CrawlerMissionScenario& scenario)
-        : rectangle_legs_begin_(stack.num_legs() > 1 ? stack.leg_begin(1)
-                                                     : stack.intended_path().size()),
-          intended_(densify(std::span(stack.intended_path()).subspan(rectangle_legs_begin_),
-                            kDenseStepM)),
-          swath_m_(scenario.swath_width_m) {}
+    explicit CrawlerMetrics(const CrawlerMissionScenario& scenario)
+        : swath_m_(scenario.swath_width_m) {}
 
     void add_tick(const sim::MotionState& truth, const CrawlerStack& stack,
                   const CrawlerStackCommand& command, double t_s) {
@@ -99,11 +95,12 @@ class CrawlerMetrics {
             if (!started_s_) started_s_ = t_s;
             end_s_ = t_s;
         }
-        const bool on_rectangle =
-            command.state == control::MissionState::kRunning && command.leg >= 1;
-        if (!on_rectangle) return;
+        const auto& legs = stack.legs();
+        const bool on_inspection = command.state == control::MissionState::kRunning &&
+                                   command.leg < legs.size() && legs[command.leg].inspection;
+        if (!on_inspection) return;
+        if (stack.legs_revision() != revision_seen_) index_inspection_legs(stack);
         on_rectangle_points_.push_back(p);
-        if (!intended_tree_) intended_tree_.emplace(intended_);
         const auto nearest = intended_tree_->nearest(p);
         if (nearest) {
             const double distance_m = std::sqrt(nearest->distance_sq_m2);
@@ -129,8 +126,27 @@ class CrawlerMetrics {
     }
 
   private:
+    /// The intended path of the inspection legs laid so far, densified (legs are laid as their
+    /// task begins, and replanned around obstacles: the ticks before were scored on the path
+    /// replaced, the ticks after on the detour).
+    void index_inspection_legs(const CrawlerStack& stack) {
+        intended_.clear();
+        for (const planning::TaskLeg& leg : stack.legs()) {
+            if (!leg.inspection) continue;
+            const std::vector<Eigen::Vector3d> dense = densify(leg.segments, kDenseStepM);
+            intended_.insert(intended_.end(), dense.begin(), dense.end());
+        }
+        revision_seen_ = stack.legs_revision();
+        intended_tree_.emplace(intended_);
+    }
+
     double coverage(const CrawlerMissionScenario& scenario, const SurfaceProjector& surface) const {
-        const std::vector<Eigen::Vector3d> cells = rectangle_cells(scenario.rectangle, surface);
+        std::vector<Eigen::Vector3d> cells;
+        for (const planning::SurfaceTask& task : scenario.tasks) {
+            if (task.type != planning::SurfaceTaskType::kRectangle) continue;
+            const std::vector<Eigen::Vector3d> more = rectangle_cells(task.rectangle, surface);
+            cells.insert(cells.end(), more.begin(), more.end());
+        }
         if (cells.empty() || on_rectangle_points_.empty()) return 0.0;
         const KdTree path(on_rectangle_points_);
         std::size_t covered = 0;
@@ -141,7 +157,7 @@ class CrawlerMetrics {
         return static_cast<double>(covered) / static_cast<double>(cells.size());
     }
 
-    std::size_t rectangle_legs_begin_;
+    std::size_t revision_seen_ = 0;
     std::vector<Eigen::Vector3d> intended_;
     std::optional<KdTree> intended_tree_;
     double swath_m_;
@@ -245,9 +261,19 @@ std::string summary_json(const CrawlerMissionScenario& m, const CrawlerMissionRe
     j["transects"] = r.transects;
     j["step_m"] = r.step_m;
     j["waypoints_reached"] = r.waypoints_reached;
+    j["tasks"] = r.tasks;
+    j["tasks_done"] = r.tasks_done;
+    j["tasks_failed"] = r.tasks_failed;
     j["cross_track_mean_m"] = r.cross_track_mean_m;
     j["cross_track_max_m"] = r.cross_track_max_m;
-    j["coverage"] = r.coverage;
+    const bool rectangle = std::any_of(m.tasks.begin(), m.tasks.end(), [](const auto& t) {
+        return t.type == planning::SurfaceTaskType::kRectangle;
+    });
+    if (rectangle) {
+        j["coverage"] = r.coverage;
+    } else {
+        j["coverage"] = nullptr;  // no rectangle to cover
+    }
     j["position_error_rms_m"] = r.position_error_rms_m;
     j["position_error_max_m"] = r.position_error_max_m;
     j["yaw_error_rms_rad"] = r.yaw_error_rms_rad;
@@ -284,12 +310,12 @@ CrawlerMissionResult run_crawler_mission(const CrawlerMissionScenario& scenario,
     // A start far off the surface would be snapped onto it silently by the simulator.
     planning::snap_to_surface(*surface, scenario.T_world_body_start().translation(),
                               scenario.stack.walk.max_start_distance_m, "start.xyz");
-    const planning::SurfaceRectanglePlan plan =
-        planning::plan_surface_rectangle(scenario.rectangle, *surface, scenario.stack.walk);
-    CrawlerStack stack(scenario.stack, *surface, plan.waypoints_world_m, sim.truth().T_world_body,
+    const auto* mesh_surface = dynamic_cast<const MeshSurface*>(surface.get());
+    CrawlerStack stack(scenario.stack, *surface, mesh_surface ? &mesh_surface->mesh() : nullptr,
+                       scenario.tasks, sim.truth().T_world_body,
                        Rng(simulation.seed).split(200).next_u64());
     sim::RecordingWriter writer(directory, options.overwrite);
-    CrawlerMetrics metrics(stack, scenario);
+    CrawlerMetrics metrics(scenario);
     detail::StopMetrics stop_metrics(sim.world().obstacles);
     control::OperatorScript script(scenario.operator_script);
     MissionFiles files;
@@ -299,6 +325,8 @@ CrawlerMissionResult run_crawler_mission(const CrawlerMissionScenario& scenario,
     double next_progress_s = 0.0;
     control::MissionState state = control::MissionState::kIdle;
     std::size_t reached = 0;
+    std::size_t tasks_done = 0;
+    std::size_t tasks_failed = 0;
 
     sim::SimStep step = sim.start();
     while (true) {
@@ -326,7 +354,11 @@ CrawlerMissionResult run_crawler_mission(const CrawlerMissionScenario& scenario,
         }();
         state = command.state;
         if (command.stop) stop_metrics.add(*command.stop, step.truth.T_world_body);
-        for (const StackEvent& e : command.events) reached += e.type == "waypoint_reached";
+        for (const StackEvent& e : command.events) {
+            reached += e.type == "waypoint_reached";
+            tasks_done += e.type == "task_done";
+            tasks_failed += e.type == "task_failed";
+        }
         {
             StageClock clock(timing.log_s);
             log_command(files, command, step.truth, t_s);
@@ -351,9 +383,12 @@ CrawlerMissionResult run_crawler_mission(const CrawlerMissionScenario& scenario,
     CrawlerMissionResult result = metrics.result(scenario, *surface);
     result.final_state = state;
     result.completed = state == control::MissionState::kCompleted;
-    result.transects = plan.transects;
-    result.step_m = plan.step_m;
+    result.transects = stack.transects();
+    result.step_m = stack.step_m();
     result.waypoints_reached = reached;
+    result.tasks = scenario.tasks.size();
+    result.tasks_done = tasks_done;
+    result.tasks_failed = tasks_failed;
     result.uwb_applied = stack.filter().counters().uwb_applied;
     result.uwb_refused = stack.filter().counters().uwb_refused;
     result.inputs_rejected = stack.inputs_rejected();

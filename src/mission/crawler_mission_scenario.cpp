@@ -15,6 +15,7 @@
 #include <scantling/sim/sensor_configs.hpp>
 
 #include "detail/config_nodes.hpp"
+#include "detail/crawler_task_document.hpp"
 #include "detail/mission_schemas.hpp"
 
 namespace scantling::mission {
@@ -22,17 +23,6 @@ namespace {
 
 using detail::required;
 using detail::without;
-
-/// `mission:` of a crawler document.
-struct RectangleMission {
-    std::string type;
-    Eigen::Vector3d start_m = Eigen::Vector3d::Zero();
-    double width_m = 1.0;
-    double height_m = 1.0;
-    double max_step_m = 0.4;
-    Eigen::Vector3d up = Eigen::Vector3d::UnitZ();
-    double swath_width_m = 0.5;
-};
 
 /// `texture_map:` of a crawler document: the map's extent in its frame, placed in the world.
 /// Its defaults are perception::TextureMapConfig's (the YAML is flat, the map pose a PoseSpec).
@@ -217,6 +207,46 @@ const io::ConfigSchema<perception::StopAndMapConfig>& stop_and_map_schema() {
     return schema;
 }
 
+const io::ConfigSchema<perception::FaceCorridorConfig>& corridor_schema() {
+    using S = perception::FaceCorridorConfig;
+    static const io::ConfigSchema<S> schema = [] {
+        io::ConfigSchema<S> s;
+        s.field("cell_size_m", &S::cell_size_m, "x-y grid, m", io::kPositive)
+            .field("face_tolerance_m", &S::face_tolerance_m,
+                   "a cell this near z = 0 is the face, m", io::kPositive)
+            .field("min_x_m", &S::min_x_m, "rows ahead from, m")
+            .field("max_x_m", &S::max_x_m, "rows ahead to, m")
+            .field("max_half_width_m", &S::max_half_width_m, "boundaries looked for within, m",
+                   io::kPositive)
+            .field("max_gap_cells", &S::max_gap_cells, "empty cells bridged in the face")
+            .field("min_rows", &S::min_rows, "rows with both boundaries needed")
+            .field("max_boundary_residual_m", &S::max_boundary_residual_m,
+                   "a row's boundary off the fitted line by more: an outlier, m", io::kPositive);
+        return s;
+    }();
+    return schema;
+}
+
+const io::ConfigSchema<planning::DetourConfig>& detour_schema() {
+    using S = planning::DetourConfig;
+    static const io::ConfigSchema<S> schema = [] {
+        io::ConfigSchema<S> s;
+        s.field("clearance_m", &S::clearance_m, "the centre passes footprints this far, m",
+                io::kPositive)
+            .field("rejoin_m", &S::rejoin_m, "back on the path this far past the obstacle, m",
+                   io::kPositive)
+            .field("max_offset_m", &S::max_offset_m, "largest lateral offset tried, m",
+                   io::kPositive)
+            .field("offset_step_m", &S::offset_step_m, "the offset grows by this per try, m",
+                   io::kPositive)
+            .field("inside_clearance_m", &S::inside_clearance_m,
+                   "a footprint the crawler stopped within the clearance of: passed this far, m",
+                   io::kPositive);
+        return s;
+    }();
+    return schema;
+}
+
 const io::ConfigSchema<CrawlerStackConfig>& stack_schema() {
     using S = CrawlerStackConfig;
     static const io::ConfigSchema<S> schema = [] {
@@ -242,13 +272,20 @@ const io::ConfigSchema<CrawlerStackConfig>& stack_schema() {
                    "stopped this far from it, m", io::kNonNegative)
             .field("corridor_half_width_m", &S::corridor_half_width_m,
                    "obstacles within this of the heading line count, m", io::kPositive)
+            .field("replan_around_obstacles", &S::replan_around_obstacles,
+                   "stopped by an obstacle: replan around it (else pause for the operator)")
+            .section("detour", &S::detour, detour_schema())
             .field("stop_spacing_m", &S::stop_spacing_m,
                    "stop-and-map after this distance on a leg and at waypoints, m (0: waypoints)",
                    io::kNonNegative)
             .field("stop_settle_s", &S::stop_settle_s, "into a stop: pose and accumulation, s",
                    io::kNonNegative)
             .field("stop_duration_s", &S::stop_duration_s, "a stop in all, s", io::kPositive)
-            .section("stop_and_map", &S::stop_and_map, stop_and_map_schema());
+            .section("stop_and_map", &S::stop_and_map, stop_and_map_schema())
+            .section("corridor", &S::corridor, corridor_schema(),
+                     "the stiffener drives' corridor from a stop's cloud")
+            .field("corridor_join_m", &S::corridor_join_m,
+                   "join the corridor's centre line this far ahead, m", io::kNonNegative);
         return s;
     }();
     return schema;
@@ -264,23 +301,6 @@ const io::ConfigSchema<CrawlerDocument>& document_schema() {
             .field("linger_s", &S::linger_s, "simulated after the end, s", io::kNonNegative)
             .section("stack", &S::stack, stack_schema())
             .list("faults", &S::faults, detail::fault_schema());
-        return s;
-    }();
-    return schema;
-}
-
-const io::ConfigSchema<RectangleMission>& mission_schema() {
-    using S = RectangleMission;
-    static const io::ConfigSchema<S> schema = [] {
-        io::ConfigSchema<S> s;
-        s.field("type", &S::type, "surface_rectangle")
-            .field("start_m", &S::start_m, "lower-left corner, on the surface, world, m")
-            .field("width_m", &S::width_m, "W, across, m", io::kPositive)
-            .field("height_m", &S::height_m, "H, up, m", io::kPositive)
-            .field("max_step_m", &S::max_step_m, "largest transect spacing, m", io::kPositive)
-            .field("up", &S::up, "the world's up direction")
-            .field("swath_width_m", &S::swath_width_m, "one transect's inspected width, m",
-                   io::kPositive);
         return s;
     }();
     return schema;
@@ -322,25 +342,15 @@ CrawlerMissionScenario from_document(const io::ConfigNode& root, const std::stri
         texture_schema().apply(*texture, t, "texture_map");
         document.stack.texture = {.enabled = t.enabled, .map = to_config(t)};
     }
-    RectangleMission mission;
-    const io::ConfigNode& mission_node = required(root, "mission");
-    mission_schema().apply(mission_node, mission, "mission");
-    if (mission.type != "surface_rectangle") {
-        io::detail::fail(
-            mission_node, "mission.type",
-            fmt::format("'{}', expected surface_rectangle for a crawler mission", mission.type));
-    }
+    const detail::CrawlerMissionDocument mission =
+        detail::crawler_mission_from(required(root, "mission"));
     CrawlerMissionScenario m;
     m.name = document.name.empty() ? std::filesystem::path(name).stem().string() : document.name;
     m.description = document.description;
     m.simulation = sim::scenario_from_node(required(root, "simulation"), "simulation");
     m.start = document.start;
     m.linger_s = document.linger_s;
-    m.rectangle = {.start_world_m = mission.start_m,
-                   .width_m = mission.width_m,
-                   .height_m = mission.height_m,
-                   .max_step_m = mission.max_step_m,
-                   .up_world = mission.up};
+    m.tasks = mission.tasks;
     m.swath_width_m = mission.swath_width_m;
     m.stack = document.stack;
     m.faults = document.faults;
@@ -358,18 +368,20 @@ void CrawlerMissionScenario::validate() const {
     simulation.validate("simulation");
     if (simulation.vehicle.type != sim::VehicleType::kCrawler) {
         throw ConfigError(
-            "simulation.vehicle.type: a surface_rectangle mission needs the crawler vehicle");
+            "simulation.vehicle.type: a crawler mission (surface_rectangle, surface_tasks) needs "
+            "the crawler vehicle");
     }
     config_checks::require(linger_s >= 0.0 && std::isfinite(linger_s), "", "linger_s", linger_s,
                            "finite >= 0");
     config_checks::require_positive(swath_width_m, "mission", "swath_width_m");
+    if (tasks.empty()) throw ConfigError("mission.tasks: a crawler mission needs a task");
     stack.validate("stack");
     for (std::size_t i = 0; i < faults.size(); ++i)
         faults[i].validate(fmt::format("faults[{}]", i));
 }
 
 bool is_crawler_mission_file(const std::string& path) {
-    return detail::mission_type_of(path) == "surface_rectangle";
+    return detail::is_crawler_mission_type(detail::mission_type_of(path));
 }
 
 CrawlerMissionScenario load_crawler_mission_scenario(const std::string& path,

@@ -15,18 +15,6 @@ namespace {
 using control::MissionState;
 using control::OperatorCommandType;
 
-std::vector<std::vector<control::PathSegment>> lay_legs(
-    const SurfaceProjector& surface, const Eigen::Vector3d& p_start,
-    const std::vector<Eigen::Vector3d>& waypoints, const planning::SurfaceWalkConfig& walk) {
-    std::vector<std::vector<control::PathSegment>> legs;
-    Eigen::Vector3d from = p_start;
-    for (const Eigen::Vector3d& to : waypoints) {
-        legs.push_back(planning::surface_line(surface, from, to, walk));
-        from = to;
-    }
-    return legs;
-}
-
 }  // namespace
 
 void CrawlerStackConfig::validate(std::string_view prefix) const {
@@ -47,27 +35,28 @@ void CrawlerStackConfig::validate(std::string_view prefix) const {
                                "0 (off) or > obstacle_stop_distance_m");
     }
     config_checks::require_positive(corridor_half_width_m, prefix, "corridor_half_width_m");
+    detour.validate(std::string(prefix) + ".detour");
     config_checks::require_non_negative(stop_spacing_m, prefix, "stop_spacing_m");
     config_checks::require_non_negative(stop_settle_s, prefix, "stop_settle_s");
     config_checks::require(std::isfinite(stop_duration_s) && stop_duration_s > stop_settle_s,
                            prefix, "stop_duration_s", stop_duration_s,
                            "finite and > stop_settle_s");
     stop_and_map.validate(std::string(prefix) + ".stop_and_map");
+    corridor.validate(std::string(prefix) + ".corridor");
+    config_checks::require_non_negative(corridor_join_m, prefix, "corridor_join_m");
     if (texture.enabled) texture.map.validate("texture_map");
 }
 
 CrawlerStack::CrawlerStack(const CrawlerStackConfig& config, const SurfaceProjector& surface,
-                           std::vector<Eigen::Vector3d> waypoints_world_m,
+                           const TriangleMesh* mesh, std::vector<planning::SurfaceTask> tasks,
                            const Eigen::Isometry3d& T_world_body_start, std::uint64_t seed)
     : config_((config.validate(), config)),
       filter_(config_.particle_filter, surface, T_world_body_start, seed),
-      waypoints_(std::move(waypoints_world_m)) {
-    if (waypoints_.empty()) throw InputError("crawler stack: a mission needs a waypoint");
-    legs_ = lay_legs(surface, T_world_body_start.translation(), waypoints_, config_.walk);
-    for (const auto& leg : legs_) {
-        leg_begins_.push_back(intended_.size());
-        intended_.insert(intended_.end(), leg.begin(), leg.end());
-    }
+      surface_(surface),
+      mesh_(mesh),
+      tasks_(std::move(tasks)) {
+    if (tasks_.empty()) throw InputError("mission.tasks: a mission needs a task");
+    check_tasks(T_world_body_start.translation());
     if (config_.T_body_lidar) mapper_.emplace(config_.stop_and_map, *config_.T_body_lidar);
     if (config_.texture.enabled && config_.T_body_camera) texture_.emplace(config_.texture.map);
 }
@@ -204,13 +193,17 @@ void CrawlerStack::apply(const control::OperatorCommand& command, double t_s,
     switch (command.type) {
         case OperatorCommandType::kStart:
             if (state_ != MissionState::kIdle) return refuse("already started");
-            return change_state(MissionState::kRunning, fmt::format("start: {} legs", legs_.size()),
-                                t_s, events);
+            return change_state(MissionState::kRunning,
+                                fmt::format("start: {} tasks", tasks_.size()), t_s, events);
         case OperatorCommandType::kPause:
             if (state_ != MissionState::kRunning) return refuse("not running");
             return change_state(MissionState::kPaused, "pause: standing still", t_s, events);
         case OperatorCommandType::kResume:
             if (state_ != MissionState::kPaused) return refuse("not paused");
+            if (task_failed_) {  // the operator goes on with the rest of the mission
+                task_failed_ = false;
+                ++tasks_skipped_;
+            }
             if (blocking_) {  // the operator judged the obstacle passable
                 cleared_world_m_.push_back(obstacles_.at(*blocking_).centroid_world_m);
                 blocking_.reset();
@@ -236,28 +229,28 @@ void CrawlerStack::watch_wheels(double t_s, std::vector<StackEvent>& events) {
 
 void CrawlerStack::follow(CrawlerStackCommand& out, double t_s) {
     const Eigen::Isometry3d T_world_body = filter_.estimate().T_world_body;
-    while (leg_ < legs_.size()) {
-        if (!follower_) follower_.emplace(legs_[leg_], config_.follower);
+    while (leg_ < legs_.size() || next_task(out, t_s)) {
+        if (!follower_) follower_.emplace(legs_[leg_].segments, config_.follower);
         const control::FollowerCommand c = follower_->update(T_world_body);
         if (!c.done) {
             out.forward_mps = c.v_mps;
             out.yaw_rate_radps = c.omega_radps;
             out.error = c.error;
-            break;
+            return;
         }
         out.events.push_back(
             {t_s, "waypoint_reached",
              fmt::format(R"({{"waypoint":{},"reason":"waypoint {} reached"}})", leg_, leg_)});
         follower_.reset();
+        passing_world_m_.clear();
         ++leg_;
-        if (mapper_ && leg_ < legs_.size()) {
-            stop_due_ = true;  // map at the waypoint before the next leg
+        // Map at the waypoint before the next leg; not where a stiffener drive joins its
+        // corridor, measured a moment ago (its stops re-measure it every stop_spacing_m).
+        const bool joined_corridor = corridor_leg_ && leg_ == *corridor_leg_;
+        if (mapper_ && !joined_corridor && (leg_ < legs_.size() || task_ < tasks_.size())) {
+            stop_due_ = true;
             return;
         }
-    }
-    if (leg_ >= legs_.size()) {
-        change_state(MissionState::kCompleted,
-                     fmt::format("all {} waypoints reached", waypoints_.size()), t_s, out.events);
     }
 }
 

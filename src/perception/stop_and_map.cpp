@@ -151,6 +151,7 @@ StopMap StopMapper::finish(double t_s) {
     previous_ = Previous{.cloud_body = stop.detection.points,
                          .T_world_body_localisation = stop.T_world_body_localisation,
                          .T_world_body_map = stop.T_world_body_map};
+    stop.cloud_body = std::move(open.cloud_body);
     return stop;
 }
 

@@ -88,6 +88,24 @@ SurfaceMesh to_surface_mesh(const TriangleMesh& mesh) {
     return out;
 }
 
+// CGAL 5.5 returns a longer, wrong path from a source on an edge of the facet it is located in
+// (a barycentric coordinate exactly 0): on a flat 8 × 8 grid plate, from (-0.6, -0.5) on a grid
+// line, 1.6225 m against the straight 1.5811 m, zig-zagging 1.5 cm off the line
+// (SurfaceTasks.GoToTakesTheGeodesicOnAMeshAndIsAnApproach). A point nudged 1e-9 into the
+// facet gives the straight line; the nudge moves it by a nanometre of the facet's size.
+constexpr double kBarycentricNudge = 1e-9;
+
+FaceLocation inside_facet(FaceLocation location) {
+    Barycentric& b = location.second;
+    double sum = 0.0;
+    for (std::size_t i = 0; i < 3; ++i) {
+        b[i] = std::max(b[i], kBarycentricNudge);
+        sum += b[i];
+    }
+    for (std::size_t i = 0; i < 3; ++i) b[i] /= sum;
+    return location;
+}
+
 // A located start or goal: the closest surface point, refused if too far.
 FaceLocation snap(const ShortestPath& paths, const AabbTree& tree, const Eigen::Vector3d& p_world_m,
                   std::string_view field, double max_snap_distance_m) {
@@ -105,7 +123,7 @@ FaceLocation snap(const ShortestPath& paths, const AabbTree& tree, const Eigen::
             "max_snap_distance_m {:.3f} m",
             field, p_world_m.x(), p_world_m.y(), p_world_m.z(), distance_m, max_snap_distance_m));
     }
-    return location;
+    return inside_facet(location);
 }
 
 // One point of the path and the facets it may lie in: every facet around a corner of the

@@ -40,7 +40,9 @@ ConfigSchema<PlateConfig> plate_schema() {
         .section("stiffener", &PlateConfig::stiffener, stiffener_schema())
         .section("defects", &PlateConfig::defects, defects_schema())
         .list("holes", &PlateConfig::holes, plate_hole_schema(),
-              "axis-aligned rectangular through-holes");
+              "axis-aligned rectangular through-holes")
+        .field("crawler_on_mesh", &PlateConfig::crawler_on_mesh,
+               "a crawler drives on the mesh's faces (the stiffeners' too), not the top plane");
     return s;
 }
 

@@ -45,6 +45,9 @@ CrawlerCommand pursuit(const VehicleSpec& spec, const SurfaceProjector& surface,
 std::unique_ptr<SurfaceProjector> crawler_surface(const WorldSpec& spec, const World& world) {
     switch (spec.type) {
         case WorldType::kPlate:
+            // The facets' own normals: a box's smoothed vertex normals would tilt a stiffener's
+            // narrow faces by tens of degrees.
+            if (spec.plate.crawler_on_mesh) return std::make_unique<MeshSurface>(world.mesh, false);
             // Bounded: a crawler stops at the plate's edge instead of driving on into the air
             // (the plate's through-holes are not part of it).
             return std::make_unique<PlateSurface>(

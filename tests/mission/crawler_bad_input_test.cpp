@@ -215,7 +215,7 @@ TEST(CrawlerBadInputMoebius, ARectangleRunningOffTheStripsBorderIsRefused) {
     const sim::World world = sim::build_world(m.simulation.world);
     const std::unique_ptr<SurfaceProjector> strip = sim::crawler_surface(m.simulation, world);
     const planning::SurfaceRectanglePlan plan =
-        planning::plan_surface_rectangle(m.rectangle, *strip, m.stack.walk);
+        planning::plan_surface_rectangle(m.tasks.at(0).rectangle, *strip, m.stack.walk);
     EXPECT_EQ(plan.transects, 9u);
     constexpr double kMinBorderGapM = 0.05;  // the scenario keeps 6 cm and more
     for (const Eigen::Vector3d& p : plan.waypoints_world_m) {
@@ -232,7 +232,7 @@ TEST(CrawlerBadInputMoebius, ARectangleRunningOffTheStripsBorderIsRefused) {
         EXPECT_LT(std::abs(v), 0.5 - kMinBorderGapM) << p.transpose();
         EXPECT_NEAR((p - mid).dot(d_du.cross(d_dv).normalized()), 0.005, 1e-3) << p.transpose();
     }
-    planning::SurfaceRectangleRequest longer = m.rectangle;
+    planning::SurfaceRectangleRequest longer = m.tasks.at(0).rectangle;
     longer.width_m = 4.0;
     try {
         planning::plan_surface_rectangle(longer, *strip, m.stack.walk);

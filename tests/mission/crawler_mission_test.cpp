@@ -227,7 +227,9 @@ TEST(CrawlerMission, TheShippedTankScenarioParses) {
         load_crawler_mission_scenario(std::string(SCANTLING_SOURCE_DIR) +
                                       "/scenarios/missions/crawler/storage_tank_rectangle.yaml");
     EXPECT_EQ(m.simulation.vehicle.type, sim::VehicleType::kCrawler);
-    EXPECT_DOUBLE_EQ(m.rectangle.width_m, 6.0);
+    ASSERT_EQ(m.tasks.size(), 1u);
+    EXPECT_EQ(m.tasks[0].type, planning::SurfaceTaskType::kRectangle);
+    EXPECT_DOUBLE_EQ(m.tasks[0].rectangle.width_m, 6.0);
     EXPECT_EQ(m.stack.particle_filter.uwb_anchors_world_m.size(), 5u);
     EXPECT_TRUE(is_crawler_mission_file(std::string(SCANTLING_SOURCE_DIR) +
                                         "/scenarios/missions/crawler/storage_tank_rectangle.yaml"));

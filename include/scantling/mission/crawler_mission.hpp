@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// The magnetic crawler's rectangle mission in closed loop (issue 15; SPEC §6): a mission
+/// The magnetic crawler's missions in closed loop (issue 15; SPEC §6): a mission
 /// scenario whose vehicle is the simulated crawler on its surface and whose robot is the
 /// CrawlerStack (crawler_stack.hpp). Each tick the simulator returns the readings due; they go
 /// to the recording and, as io types, to the stack; the stack's wheel command moves the
@@ -20,7 +20,18 @@
 ///     max_step_m: 0.4               # transect spacing limit; the step is adjusted to W/(n−1)
 ///     up: [0, 0, 1]                 # the world's up (a horizontal plate needs another)
 ///     swath_width_m: 0.5            # what one transect inspects, for the coverage figure
-///   stack: {particle_filter: {...}, follower: {...}, walk: {...}, max_wheel_age_s}
+///   # or a task list (planning/surface_tasks.hpp), each task taking its own keys only:
+///   mission:
+///     type: surface_tasks
+///     swath_width_m: 0.5
+///     tasks:
+///       - {type: go_to, goal_m: [x, y, z]}               # the geodesic on a mesh
+///       - {type: rectangle, start_m, width_m, height_m, max_step_m, up}
+///       - {type: vertical_transect, length_m: 1.0, reverse: false, up: [0, 0, 1]}
+///       - {type: horizontal_transect, length_m: 1.0, reverse: false, up: [0, 0, 1]}
+///       - {type: drive_between_stiffeners, length_m: 1.5}   # also drive_on_stiffener,
+///                                                          # drive_on_stiffener_side
+///   stack: {particle_filter: {...}, follower: {...}, walk: {...}, corridor: {...}, ...}
 ///   operator: [{time_s, command: pause | resume | abort}]
 ///   faults: [{sensor: uwb, kind: dropout, start_s, duration_s}]
 ///
@@ -28,9 +39,10 @@
 /// arm); its map is the world's surface (the plate's plane, the tank's cylinder, the mesh).
 ///
 /// Figures, on the truth: the cross-track error is the distance from the true position to the
-/// intended path of the rectangle's legs (all but the drive to its start), per tick while the
-/// mission runs on those legs; the coverage is the share of the rectangle (cells of 2 cm laid
-/// on the surface) within half a swath of the true path while on them; the localisation error
+/// intended path of the inspection legs (the transects and drives, not the drives to their
+/// start: planning::TaskLeg::inspection), per tick while the mission runs on those legs; the
+/// coverage is the share of the rectangles (cells of 2 cm laid on the surface) within half a
+/// swath of the true path while on them (0 without a rectangle task); the localisation error
 /// is the PF pose against the truth at every tick.
 /// Errors name the file, line and key (ParseError) or the field (ConfigError, InputError).
 
@@ -44,7 +56,7 @@
 #include <scantling/mission/closed_loop.hpp>
 #include <scantling/mission/crawler_stack.hpp>
 #include <scantling/mission/fault_injection.hpp>
-#include <scantling/planning/surface_rectangle.hpp>
+#include <scantling/planning/surface_tasks.hpp>
 #include <scantling/sim/scenario.hpp>
 
 namespace scantling::mission {
@@ -55,8 +67,8 @@ struct CrawlerMissionScenario {
     sim::Scenario simulation{};
     sim::PoseSpec start{};
     double linger_s = 1.0;  ///< simulated after the mission completes or aborts, s, >= 0
-    planning::SurfaceRectangleRequest rectangle{};
-    double swath_width_m = 0.5;  ///< > 0, for the coverage figure only
+    std::vector<planning::SurfaceTask> tasks;  ///< at least one
+    double swath_width_m = 0.5;                ///< > 0, for the coverage figure only
     CrawlerStackConfig stack{};
     std::vector<control::TimedCommand> operator_script;
     std::vector<SensorFault> faults;
@@ -66,7 +78,8 @@ struct CrawlerMissionScenario {
     void validate() const;
 };
 
-/// True when the document's `mission.type` is `surface_rectangle` (the crawler's mission).
+/// True when the document's `mission.type` is `surface_rectangle` or `surface_tasks` (the
+/// crawler's missions).
 bool is_crawler_mission_file(const std::string& path);
 CrawlerMissionScenario load_crawler_mission_scenario(
     const std::string& path, const std::vector<std::string>& overrides = {});
@@ -102,9 +115,12 @@ struct CrawlerMissionResult {
     double sim_time_s = 0.0;
     double wall_time_s = 0.0;
     double real_time_factor = 0.0;
-    std::size_t transects = 0;
+    std::size_t transects = 0;  ///< the first rectangle task's
     double step_m = 0.0;
     std::size_t waypoints_reached = 0;
+    std::size_t tasks = 0;
+    std::size_t tasks_done = 0;
+    std::size_t tasks_failed = 0;
     double cross_track_mean_m = 0.0;  ///< see the file comment
     double cross_track_max_m = 0.0;
     std::size_t cross_track_samples = 0;

@@ -11,11 +11,16 @@
 ///   bias, taken off every later sample;
 ///   per command tick: the PF pose → the segment follower (control/segment_follower.hpp) on
 ///   the current leg → command.
-/// The legs are laid on the surface at construction (planning/surface_rectangle.hpp's
-/// surface_line): the first from the start pose to the first waypoint (SPEC's GoToMesh), then
-/// one per pair of waypoints (the rectangle's transects and the steps between them). A leg is
-/// done when the follower has passed its last segment; the mission is then at its next
-/// waypoint (a `waypoint_reached` event) and completes after the last one.
+/// The mission is a list of tasks (planning/surface_tasks.hpp: go_to, rectangle, vertical and
+/// horizontal transects, the three stiffener drives), each laid on the surface as legs when it
+/// begins, from the estimate then. Every task but the corridor ones is laid once at
+/// construction, chained from the start, so an invalid request is refused before the crawler
+/// moves. A leg is done when the follower has passed its last segment: a `waypoint_reached`
+/// event. A stiffener drive first stops to map (or uses the stop just made at its start): the
+/// face corridor of the stop's cloud (perception/face_corridor.hpp) is its centre line. A task
+/// that cannot be laid (no corridor found, a leg leaving the surface from where the crawler
+/// is) raises `task_failed` and pauses: the operator's resume skips it, an abort ends the
+/// mission. The mission completes after the last task (`task_started` / `task_done` events).
 /// The operator may pause (stand still), resume, and abort (stand still for good). A sample
 /// with a non-finite value is dropped before the filter with an `input_rejected` event (once
 /// per episode); the wheels silent for longer than `max_wheel_age_s` stop the crawler (a
@@ -53,9 +58,12 @@
 #include <scantling/io/recording.hpp>
 #include <scantling/localization/surface_particle_filter.hpp>
 #include <scantling/mission/stack_event.hpp>
+#include <scantling/perception/face_corridor.hpp>
 #include <scantling/perception/stop_and_map.hpp>
 #include <scantling/perception/texture_map.hpp>
+#include <scantling/planning/detour.hpp>
 #include <scantling/planning/surface_rectangle.hpp>
+#include <scantling/planning/surface_tasks.hpp>
 
 namespace scantling::mission {
 
@@ -100,6 +108,12 @@ struct CrawlerStackConfig {
     double obstacle_slow_distance_m = 0.5;
     double obstacle_stop_distance_m = 0.1;
     double corridor_half_width_m = 0.12;
+    /// Stopped by an obstacle, the crawler replans the rest of its leg around it
+    /// (planning/detour.hpp: on the side that stays on the surface and clear of every mapped
+    /// obstacle, a `path_replanned` event); without a detour, or off, it pauses for the
+    /// operator (SPEC §6: "replan a globally valid path or ask the operator").
+    bool replan_around_obstacles = true;
+    planning::DetourConfig detour{};  ///< YAML: stack.detour
     /// Stop-and-map (SPEC §6), with a LiDAR mounted (T_body_lidar): the crawler stops after
     /// every stop_spacing_m driven on a leg and at every waypoint, m, >= 0 (0: at waypoints only).
     double stop_spacing_m = 1.0;
@@ -108,6 +122,11 @@ struct CrawlerStackConfig {
     perception::StopAndMapConfig stop_and_map{};  ///< YAML: stack.stop_and_map
     /// The LiDAR's mount (body ← LiDAR), from the calibration; none: no stop-and-map.
     std::optional<Eigen::Isometry3d> T_body_lidar;
+    /// The stiffener drives' corridor, from a stop's cloud (YAML: stack.corridor).
+    perception::FaceCorridorConfig corridor{};
+    /// A stiffener drive joins the corridor's centre line this far ahead of the crawler's foot
+    /// on it, m, >= 0: the follower converges on the way instead of turning on the spot.
+    double corridor_join_m = 0.15;
     CrawlerTextureConfig texture{};
     /// The camera's mount (body ← optical frame), from the calibration; none: no texture map.
     std::optional<Eigen::Isometry3d> T_body_camera;
@@ -121,7 +140,7 @@ struct CrawlerStackCommand {
     double forward_mps = 0.0;
     double yaw_rate_radps = 0.0;
     control::MissionState state = control::MissionState::kIdle;
-    std::size_t leg = 0;  ///< the leg followed (the number of legs once done)
+    std::size_t leg = 0;  ///< the leg followed (the number of legs laid once past them)
     /// The follower's error in the current segment (estimate, not truth).
     control::SegmentFrameError error;
     std::vector<StackEvent> events;
@@ -130,12 +149,13 @@ struct CrawlerStackCommand {
 
 class CrawlerStack {
   public:
-    /// `surface`: the known surface the filter keeps its particles on (not owned, must outlive
-    /// the stack). `waypoints_world_m`: the mission's, in order (at least one).
-    /// ConfigError for a bad config, InputError for a non-finite start or a leg that leaves
-    /// the surface.
+    /// `surface`: the known surface the filter keeps its particles on and the tasks are laid
+    /// on; `mesh`: its triangle mesh when it is one (go_to takes the geodesic), else null (both
+    /// not owned, must outlive the stack). `tasks`: the mission, in order (at least one).
+    /// ConfigError for a bad config; InputError naming "mission.tasks[i]" for a bad task, a
+    /// stiffener drive without a LiDAR, or a task that leaves the surface.
     CrawlerStack(const CrawlerStackConfig& config, const SurfaceProjector& surface,
-                 std::vector<Eigen::Vector3d> waypoints_world_m,
+                 const TriangleMesh* mesh, std::vector<planning::SurfaceTask> tasks,
                  const Eigen::Isometry3d& T_world_body_start, std::uint64_t seed);
 
     void add_imu(const io::ImuRecord& sample);
@@ -157,11 +177,16 @@ class CrawlerStack {
 
     localization::SurfaceParticleEstimate estimate() const { return filter_.estimate(); }
     const localization::SurfaceParticleFilter& filter() const { return filter_; }
-    /// Every leg's segments, in order (leg_begin(i) is where leg i starts).
-    const std::vector<control::PathSegment>& intended_path() const { return intended_; }
-    std::size_t leg_begin(std::size_t leg) const { return leg_begins_.at(leg); }
-    std::size_t num_legs() const { return legs_.size(); }
+    /// Every leg laid so far, in order (the corridor tasks' once their stop is mapped; a leg
+    /// replanned around an obstacle replaced).
+    const std::vector<planning::TaskLeg>& legs() const { return legs_; }
+    /// Grows whenever legs() changes (laid or replanned).
+    std::size_t legs_revision() const { return legs_revision_; }
+    /// Every leg's end, in order.
     const std::vector<Eigen::Vector3d>& waypoints() const { return waypoints_; }
+    /// The rectangle tasks' transects and spacing (the first rectangle's), for the summary.
+    std::size_t transects() const { return transects_; }
+    double step_m() const { return step_m_; }
     control::MissionState state() const { return state_; }
     std::size_t inputs_rejected() const { return inputs_rejected_; }
 
@@ -178,20 +203,58 @@ class CrawlerStack {
     /// False (with the events of a change) while the position σ is above the limit.
     bool estimate_usable(double t_s, std::vector<StackEvent>& events);
     void follow(CrawlerStackCommand& out, double t_s);
+    /// Lays every task but the corridor ones, chained from the start (InputError if one fails).
+    void check_tasks(const Eigen::Vector3d& p_start_world_m) const;
+    /// Lays the next task's legs; false while none can be followed (a corridor task waits for
+    /// its stop, the task failed, or the mission is complete).
+    bool next_task(CrawlerStackCommand& out, double t_s);
+    void add_plan(const planning::TaskPlan& plan);
+    /// A corridor task's legs from the stop just made; false (task_failed) without a corridor.
+    bool lay_corridor(double t_s, std::vector<StackEvent>& events);
+    void fail_task(const std::string& reason, double t_s, std::vector<StackEvent>& events);
+    /// The corridor of `cloud_body` for the current task, placed in the world at the newest
+    /// estimate (the crawler stands still).
+    perception::FaceCorridor corridor_of(const PointCloud& cloud_body,
+                                         Eigen::Vector3d& origin_world,
+                                         Eigen::Vector3d& direction_world) const;
+    /// At a stop on a stiffener drive: the rest of its leg re-laid on the corridor measured
+    /// now (a `corridor_remeasured` event).
+    void remeasure_corridor(const perception::StopMap& stop, double t_s,
+                            std::vector<StackEvent>& events);
+    std::string task_name(std::size_t i) const;
     /// True while the start's gyro calibration runs (standing still); ends it when due.
     bool calibrating(double t_s, std::vector<StackEvent>& events);
     /// True while a stop-and-map stop holds the crawler; opens, feeds and closes the stops.
     bool stopped_to_map(CrawlerStackCommand& out, double t_s);
-    /// Scales the command for the obstacles ahead; pauses with an event when blocked.
+    /// Scales the command for the obstacles ahead; replans or pauses with an event when
+    /// blocked.
     void slow_for_obstacles(CrawlerStackCommand& out, double t_s);
+    /// True when the operator let the crawler pass where `o` was mapped.
+    bool cleared(const perception::MappedObstacle& o) const;
+    /// True (a `path_replanned` event) when the current leg was replanned around obstacle
+    /// `blocking`; else `why` says why not.
+    bool replan_around(std::size_t blocking, double t_s, std::vector<StackEvent>& events,
+                       std::string& why);
     void count_distance();
 
     CrawlerStackConfig config_;
     localization::SurfaceParticleFilter filter_;
+    const SurfaceProjector& surface_;
+    const TriangleMesh* mesh_;
+    std::vector<planning::SurfaceTask> tasks_;
+    std::size_t task_ = 0;            ///< the next task to lay
+    std::size_t task_first_leg_ = 0;  ///< the legs of the current task begin here
+    bool task_open_ = false;          ///< task_ - 1 is laid and not done yet
+    bool task_failed_ = false;        ///< paused on task_failed: a resume skips it
+    std::size_t tasks_skipped_ = 0;
+    std::optional<std::size_t> corridor_leg_;  ///< the open stiffener drive's leg
+    std::vector<planning::TaskLeg> legs_;
+    std::size_t legs_revision_ = 0;
     std::vector<Eigen::Vector3d> waypoints_;
-    std::vector<std::vector<control::PathSegment>> legs_;
-    std::vector<control::PathSegment> intended_;
-    std::vector<std::size_t> leg_begins_;
+    std::size_t transects_ = 0;
+    double step_m_ = 0.0;
+    /// The last stop's cloud and map pose, while the crawler has not moved since.
+    std::optional<perception::StopMap> stop_here_;
     std::size_t leg_ = 0;
     std::optional<control::SegmentFollower> follower_;
     control::MissionState state_ = control::MissionState::kIdle;
@@ -220,6 +283,9 @@ class CrawlerStack {
     /// Where the operator let the crawler go on: obstacles mapped there (at any stop) no
     /// longer count.
     std::vector<Eigen::Vector3d> cleared_world_m_;
+    /// Obstacles the current leg was replanned around: they no longer slow the crawler while it
+    /// passes them (its heading still points at them as it turns away); cleared with the leg.
+    std::vector<Eigen::Vector3d> passing_world_m_;
     double driven_m_ = 0.0;  ///< estimated distance since the last stop
     std::optional<Eigen::Vector3d> last_p_;
 };

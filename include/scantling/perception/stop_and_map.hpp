@@ -88,6 +88,9 @@ struct StopMap {
     std::string icp_status;      ///< the ICP's status, "first stop", "off" or why it was not used
     SurfaceObstacles detection;  ///< body frame
     std::vector<MappedObstacle> obstacles;  ///< world
+    /// The stop's accumulated points as given (body frame, at most max_points): what a task
+    /// extracts geometry from beside the obstacles (perception/face_corridor.hpp).
+    PointCloud cloud_body;
 };
 
 class StopMapper {

@@ -67,6 +67,10 @@ struct PlateConfig {
     /// holes and of the stiffeners (web and flange seen from above); at most
     /// limits::kMaxSurfaceObstacles.
     std::vector<PlateHoleConfig> holes{};
+    /// A crawler on this plate drives on the world mesh (the plate's and the stiffeners' faces,
+    /// with the facets' own normals) instead of the plate's bounded top plane: to drive on a
+    /// stiffener's top or side. The plane, without stiffeners, is exact and cheaper.
+    bool crawler_on_mesh = false;
 
     void validate(std::string_view prefix = "plate") const;
 };
