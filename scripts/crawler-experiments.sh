@@ -11,7 +11,8 @@
 # view, summed over the stops), precision per sign, and the stops' map and PF poses; then the
 # three stiffener drives (DriveBetweenStiffeners, DriveOnStiffener, DriveOnStiffenerSide: the
 # corridor from the LiDAR) with the true lateral error from the face's true centre line
-# (written in each scenario's comment) while on the corridor, x from -1.4 to 0.6 m.
+# (written in each scenario's comment) while on the corridor, x from -1.4 to 0.6 m. The Möbius
+# task run (go_to on the geodesic, transects) reports its transects' cross-track in the first.
 #   scripts/crawler-experiments.sh [build-dir] [work-dir]
 # build-dir holds apps/scantling (default build), work-dir the recordings (default
 # /tmp/scantling-crawler). CRAWLER_ONLY="plate_2x1_imu" restricts the runs; CRAWLER_SEED picks
@@ -20,7 +21,7 @@ set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 build="${1:-build}"
 work="${2:-/tmp/scantling-crawler}"
-only="${CRAWLER_ONLY:-storage_tank_rectangle plate_5x2_rectangle plate_2x1_imu dtc_hull_rectangle moebius_rectangle plate_5x2_obstacles plate_5x2_between_stiffeners stiffener_top stiffener_side}"
+only="${CRAWLER_ONLY:-storage_tank_rectangle plate_5x2_rectangle plate_2x1_imu dtc_hull_rectangle moebius_rectangle plate_5x2_obstacles moebius_tasks plate_5x2_between_stiffeners stiffener_top stiffener_side}"
 cli="$build/apps/scantling"
 [[ -x "$cli" ]] || { echo "crawler-experiments: $cli not found: build $build first" >&2; exit 1; }
 mkdir -p "$work"
@@ -58,7 +59,9 @@ for run in $only; do
   python3 - "$summary" "$run" <<'PY'
 import json, sys
 s = json.load(open(sys.argv[1])).get("stop_and_map")
-if s:
+# Only the runs with labelled obstacles besides the plate's own edges (the stiffener drives'
+# webs and flanges are the corridor, not labelled obstacles).
+if s and any(kind != "plate_edge" for kind in s["recall"]):
     def rec(kind):
         r = s["recall"].get(kind)
         return f"{r['found']}/{r['in_view']}" if r else "-"

@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <initializer_list>
 #include <limits>
+#include <optional>
 #include <set>
 #include <string>
 #include <utility>
@@ -17,6 +18,7 @@
 
 #include <CGAL/AABB_face_graph_triangle_primitive.h>
 #include <CGAL/AABB_traits.h>
+
 #include <CGAL/AABB_tree.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
@@ -216,16 +218,49 @@ MeshPath cut_into_segments(const TriangleMesh& mesh, const std::vector<PathEvent
     return path;
 }
 
-}  // namespace
+/// The facets that may hold a path of length <= limit_m from `a` to `b`, as a mesh of their own
+/// (`faces[i]`: facet i's index in the input).
+struct Region {
+    TriangleMesh mesh;
+    std::vector<std::size_t> faces;
+};
 
-void MeshPathConfig::validate(std::string_view prefix) const {
-    config_checks::require_positive(max_snap_distance_m, prefix, "max_snap_distance_m");
+Region region_of(const TriangleMesh& mesh, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                 double limit_m) {
+    Region region;
+    std::vector<int> vertex(mesh.num_vertices(), -1);
+    for (std::size_t t = 0; t < mesh.num_triangles(); ++t) {
+        const Eigen::Vector3i& tri = mesh.triangles[t];
+        double longest_m = 0.0, nearest_m = std::numeric_limits<double>::infinity();
+        for (int c = 0; c < 3; ++c) {
+            const Eigen::Vector3d& v = mesh.vertices[static_cast<std::size_t>(tri[c])];
+            const Eigen::Vector3d& w = mesh.vertices[static_cast<std::size_t>(tri[(c + 1) % 3])];
+            longest_m = std::max(longest_m, (w - v).norm());
+            nearest_m = std::min(nearest_m, (v - a).norm() + (v - b).norm());
+        }
+        // A point of the facet inside the ellipsoid is within the longest edge of a corner.
+        if (nearest_m > limit_m + 2.0 * longest_m) continue;
+        Eigen::Vector3i out;
+        for (int c = 0; c < 3; ++c) {
+            int& id = vertex[static_cast<std::size_t>(tri[c])];
+            if (id < 0) {
+                id = static_cast<int>(region.mesh.vertices.size());
+                region.mesh.vertices.push_back(mesh.vertices[static_cast<std::size_t>(tri[c])]);
+            }
+            out[c] = id;
+        }
+        region.mesh.triangles.push_back(out);
+        region.faces.push_back(t);
+    }
+    return region;
 }
 
-MeshPath shortest_path_on_mesh(const TriangleMesh& mesh, const Eigen::Vector3d& start_world_m,
-                               const Eigen::Vector3d& goal_world_m, const MeshPathConfig& config) {
-    config.validate();
-    check_facets(mesh);
+/// The exact path on `mesh`; nullopt when the goal is not reachable from the start and `whole`
+/// is false (a region may cut the way), InputError when it is true.
+std::optional<MeshPath> path_in(const TriangleMesh& mesh, const Eigen::Vector3d& start_world_m,
+                                const Eigen::Vector3d& goal_world_m, const MeshPathConfig& config,
+                                bool whole) {
+    if (mesh.empty()) return std::nullopt;
     const SurfaceMesh surface = to_surface_mesh(mesh);
     ShortestPath paths(surface);
     AabbTree tree;
@@ -239,6 +274,7 @@ MeshPath shortest_path_on_mesh(const TriangleMesh& mesh, const Eigen::Vector3d& 
     const auto result =
         paths.shortest_path_sequence_to_source_points(goal.first, goal.second, recorder);
     if (result.first < 0.0) {
+        if (!whole) return std::nullopt;
         throw InputError(
             "mesh_path.mesh has no surface path from start_world_m to goal_world_m (they lie "
             "on different connected components)");
@@ -246,6 +282,44 @@ MeshPath shortest_path_on_mesh(const TriangleMesh& mesh, const Eigen::Vector3d& 
     std::vector<PathEvent>& events = recorder.events();
     std::reverse(events.begin(), events.end());  // CGAL visits goal → source
     return cut_into_segments(mesh, events);
+}
+
+}  // namespace
+
+void MeshPathConfig::validate(std::string_view prefix) const {
+    config_checks::require_positive(max_snap_distance_m, prefix, "max_snap_distance_m");
+    config_checks::require(std::isfinite(region_length_ratio) &&
+                               (region_length_ratio == 0.0 || region_length_ratio >= 1.0),
+                           prefix, "region_length_ratio", region_length_ratio, "0 (off) or >= 1");
+}
+
+MeshPath shortest_path_on_mesh(const TriangleMesh& mesh, const Eigen::Vector3d& start_world_m,
+                               const Eigen::Vector3d& goal_world_m, const MeshPathConfig& config) {
+    config.validate();
+    check_facets(mesh);
+    // The whole mesh must be a manifold polygon mesh even where the region leaves it out (the
+    // contract; the conversion is a small share of the propagation's cost).
+    if (config.region_length_ratio > 0.0) to_surface_mesh(mesh);
+    if (config.region_length_ratio > 0.0 && start_world_m.allFinite() && goal_world_m.allFinite()) {
+        const double limit_m = config.region_length_ratio * ((goal_world_m - start_world_m).norm() +
+                                                             2.0 * config.max_snap_distance_m);
+        const Region region = region_of(mesh, start_world_m, goal_world_m, limit_m);
+        if (region.faces.size() < mesh.num_triangles()) {
+            std::optional<MeshPath> path;
+            try {
+                path = path_in(region.mesh, start_world_m, goal_world_m, config, false);
+            } catch (const InputError&) {
+                // A region cut out of a manifold mesh may pinch at a vertex: the whole mesh.
+            }
+            if (path && path->length_m <= limit_m) {
+                for (MeshPathSegment& segment : path->segments) {
+                    segment.face = region.faces[segment.face];
+                }
+                return *path;
+            }
+        }
+    }
+    return *path_in(mesh, start_world_m, goal_world_m, config, true);
 }
 
 }  // namespace scantling::planning

@@ -79,6 +79,28 @@ TEST(CrawlerTasks, GoToThenTransectsEndWhereTheyShould) {
     fs::remove_all(dir);
 }
 
+TEST(CrawlerTasks, OnTheMoebiusStripGoesToItsGoalsOnTheGeodesic) {
+    // GoToMesh twice (the second across the twist) around two transects, on the strip's mesh.
+    const CrawlerMissionScenario m = load_crawler_mission_scenario(
+        std::string(SCANTLING_SOURCE_DIR) + "/scenarios/missions/crawler/moebius_tasks.yaml");
+    const fs::path dir = fresh_dir("moebius");
+    const CrawlerMissionResult r = run_crawler_mission(m, dir.string());
+    EXPECT_TRUE(r.completed);
+    EXPECT_EQ(r.tasks_done, 4u);
+    const io::MissionLog log = *io::read_mission_log(dir.string());
+    const std::vector<io::StampedPose> truth = io::read_tum((dir / "groundtruth.tum").string());
+    fs::remove_all(dir);
+    // Every leg's end: the snapped goals and the transects' ends; the last is the second goal.
+    ASSERT_EQ(log.intended_path.size(), 4u);
+    const Eigen::Vector3d goal = log.intended_path.back().position_world_m;
+    EXPECT_LT((goal - Eigen::Vector3d(-2.0, -0.3, 0.2)).norm(), 0.05);
+    const double miss_m = (truth.back().T_world_body.translation() - goal).norm();
+    std::printf("moebius tasks: goal missed by %.4f m, transects' cross-track %.4f m\n", miss_m,
+                r.cross_track_mean_m);
+    EXPECT_LT(miss_m, 0.03);
+    EXPECT_LT(r.cross_track_mean_m, 0.03);
+}
+
 /// The true lateral offset of the crawler from a line along x, while it drives along the middle
 /// of a stiffener drive (x from -1.4 to 0.6: past the join onto the corridor, before its end).
 struct Lateral {

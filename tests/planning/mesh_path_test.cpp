@@ -152,6 +152,50 @@ TEST(MeshPath, FollowsAHelixOnAFacetedCylinder) {
     EXPECT_LT(relative, kCylinderRelative);
 }
 
+/// The same path, facet for facet, from the region around the start and goal and from the whole
+/// mesh.
+void expect_same(const MeshPath& a, const MeshPath& b) {
+    ASSERT_EQ(a.segments.size(), b.segments.size());
+    EXPECT_NEAR(a.length_m, b.length_m, kRoundingM);
+    for (std::size_t i = 0; i < a.segments.size(); ++i) {
+        EXPECT_EQ(a.segments[i].face, b.segments[i].face) << i;
+        EXPECT_LT((a.segments[i].end_world_m - b.segments[i].end_world_m).norm(), kRoundingM) << i;
+    }
+}
+
+TEST(MeshPath, TheRegionAroundStartAndGoalGivesTheWholeMeshsPath) {
+    // A long cylinder (1 m radius, 8 m, 16 rings): a short helix touches a few rings only.
+    const TriangleMesh mesh = cylinder(1.0, 8.0, 64, 32);
+    const Eigen::Vector3d start(std::cos(0.05), std::sin(0.05), 3.3),
+        goal(std::cos(0.9), std::sin(0.9), 3.9);
+    MeshPathConfig whole;
+    whole.region_length_ratio = 0.0;
+    expect_same(shortest_path_on_mesh(mesh, start, goal),
+                shortest_path_on_mesh(mesh, start, goal, whole));
+}
+
+TEST(MeshPath, ARegionWithoutAShortEnoughPathFallsBackToTheWholeMesh) {
+    // The plate slit from its bottom edge to 0.25 m below its top (the two cells' columns at
+    // x = 1.75-2.25 m removed): from one side of the slit to the other the path goes round its
+    // end, 3.4 m against 1.0 m straight, longer than the region's twice the distance.
+    TriangleMesh slit = plate();
+    std::vector<Eigen::Vector3i> kept;
+    for (std::size_t t = 0; t < slit.triangles.size(); ++t) {
+        const std::size_t cell = t / 2;  // 16 cells per row, 7 of 8 rows slit
+        const std::size_t i = cell % 16, j = cell / 16;
+        if ((i == 7 || i == 8) && j < 7) continue;
+        kept.push_back(slit.triangles[t]);
+    }
+    slit.triangles = kept;
+    const Eigen::Vector3d start(1.5, 0.5, 0.0), goal(2.5, 0.5, 0.0);
+    const MeshPath path = shortest_path_on_mesh(slit, start, goal);
+    MeshPathConfig whole;
+    whole.region_length_ratio = 0.0;
+    expect_same(path, shortest_path_on_mesh(slit, start, goal, whole));
+    // Round the slit's end at (1.75, 1.75) and (2.25, 1.75).
+    EXPECT_NEAR(path.length_m, 2.0 * std::hypot(0.25, 1.25) + 0.5, 1e-8);  // the 1e-9 nudges
+}
+
 TEST(MeshPath, CrossesAFoldAsTheStraightLineOfTheUnfoldedSurface) {
     // A 1 × 1 m floor (x ∈ [0, 1]) and a 1 m slope rising at 30° from its edge x = 1.
     const double slope = 30.0 * kDeg;
@@ -208,6 +252,10 @@ TEST(MeshPath, RefusesPointsOffTheMeshUnreachableGoalsAndBadMeshes) {
     SCANTLING_EXPECT_ERROR(shortest_path_on_mesh(mesh, on, on, config), ConfigError,
                            "mesh_path.max_snap_distance_m");
     config.max_snap_distance_m = 0.6;  // now 0.5 m off is accepted (snapped onto the plate)
+    config.region_length_ratio = 0.5;
+    SCANTLING_EXPECT_ERROR(shortest_path_on_mesh(mesh, on, on, config), ConfigError,
+                           "mesh_path.region_length_ratio = 0.5");
+    config.region_length_ratio = 2.0;
     EXPECT_NEAR(shortest_path_on_mesh(mesh, off, on + Eigen::Vector3d(1, 0, 0), config).length_m,
                 1.0, kRoundingM);
 
