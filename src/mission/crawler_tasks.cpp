@@ -27,6 +27,7 @@ perception::CorridorBounds bounds_of(planning::SurfaceTaskType type) {
 }
 
 }  // namespace
+
 std::string CrawlerStack::task_name(std::size_t i) const {
     return fmt::format("mission.tasks[{}] ({})", i, planning::to_string(tasks_.at(i).type));
 }
@@ -49,13 +50,16 @@ void CrawlerStack::check_tasks(const Eigen::Vector3d& p_start_world_m) const {
                 planning::lay_surface_task(task, surface_, mesh_, p, config_.walk, task_name(i));
             if (!plan.waypoints_world_m.empty()) p = plan.waypoints_world_m.back();
         } catch (const InputError& e) {
-            throw InputError(fmt::format("{}: {}", task_name(i), e.what()));
+            // The rectangle's planner names its own fields ("surface_rectangle.width_m ..."):
+            // say which task; the transects' and go-to's messages name it already.
+            const std::string what = e.what();
+            if (what.rfind(task_name(i), 0) == 0) throw;
+            throw InputError(fmt::format("{}: {}", task_name(i), what));
         }
     }
 }
 
 void CrawlerStack::add_plan(const planning::TaskPlan& plan) {
-    task_first_leg_ = legs_.size();
     legs_.insert(legs_.end(), plan.legs.begin(), plan.legs.end());
     ++legs_revision_;
     waypoints_.insert(waypoints_.end(), plan.waypoints_world_m.begin(),

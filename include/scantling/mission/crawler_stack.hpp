@@ -242,10 +242,9 @@ class CrawlerStack {
     const SurfaceProjector& surface_;
     const TriangleMesh* mesh_;
     std::vector<planning::SurfaceTask> tasks_;
-    std::size_t task_ = 0;            ///< the next task to lay
-    std::size_t task_first_leg_ = 0;  ///< the legs of the current task begin here
-    bool task_open_ = false;          ///< task_ - 1 is laid and not done yet
-    bool task_failed_ = false;        ///< paused on task_failed: a resume skips it
+    std::size_t task_ = 0;      ///< the next task to lay
+    bool task_open_ = false;    ///< task_ - 1 is laid and not done yet
+    bool task_failed_ = false;  ///< paused on task_failed: a resume skips it
     std::size_t tasks_skipped_ = 0;
     std::optional<std::size_t> corridor_leg_;  ///< the open stiffener drive's leg
     std::vector<planning::TaskLeg> legs_;

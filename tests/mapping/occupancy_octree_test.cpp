@@ -1,0 +1,279 @@
+// The exploration's occupancy octree (SPEC §8, issue 16 item 1) against analytic ground truth:
+// a wall seen by a pinhole depth camera (free frustum, occupied wall, unknown behind), missing
+// returns, a closed box room explored from many views, unknown volume of boxes, two
+// resolutions, bad input, and the .bt file read back by OctoMap's own reader.
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <filesystem>
+#include <limits>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <octomap/OcTree.h>
+
+#include <scantling/core/error.hpp>
+#include <scantling/mapping/occupancy_octree.hpp>
+
+#include "../planning/expect_error.hpp"
+
+namespace scantling::mapping {
+namespace {
+
+using Eigen::Vector3d;
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+constexpr double kWallM = 3.0;  // the wall's depth in front of the sensor
+const double kNaN = std::numeric_limits<double>::quiet_NaN();
+// The box room of the exploration tests: 6 × 4 × 3 m, walls at an odd multiple of 0.025 m, so
+// mid-voxel at 0.05 m and a quarter voxel deep at 0.1 m (no point on a voxel face).
+const Eigen::AlignedBox3d kRoom(Vector3d(-2.975, -1.975, -1.475), Vector3d(3.025, 2.025, 1.525));
+
+/// Optical frame (x right, y down, z forward) in a body frame (x forward, z up).
+Eigen::Matrix3d rotation_body_optical() {
+    return (Eigen::Matrix3d() << 0, 0, 1, -1, 0, 0, 0, -1, 0).finished();
+}
+
+/// A camera at `p_world` looking along yaw / pitch (pitch > 0 looks down).
+Eigen::Isometry3d camera_pose(const Vector3d& p_world, double yaw_rad, double pitch_rad) {
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.linear() = (Eigen::AngleAxisd(yaw_rad, Vector3d::UnitZ()) *
+                  Eigen::AngleAxisd(pitch_rad, Vector3d::UnitY()))
+                     .toRotationMatrix() *
+                 rotation_body_optical();
+    T.translation() = p_world;
+    return T;
+}
+
+/// Unit pixel rays of a pinhole camera (optical frame), `width` × `height` over the FOV.
+std::vector<Vector3d> pixel_rays(int width, int height, double hfov_rad, double vfov_rad) {
+    std::vector<Vector3d> rays;
+    const double tx = std::tan(hfov_rad / 2.0), ty = std::tan(vfov_rad / 2.0);
+    for (int v = 0; v < height; ++v) {
+        for (int u = 0; u < width; ++u) {
+            rays.push_back(Vector3d(tx * (2.0 * (u + 0.5) / width - 1.0),
+                                    ty * (2.0 * (v + 0.5) / height - 1.0), 1.0)
+                               .normalized());
+        }
+    }
+    return rays;
+}
+
+/// A wall frame: every pixel of a 320 × 240, 60° × 45° camera hits the plane z = depth_m.
+PointCloud wall_frame(double depth_m) {
+    PointCloud cloud;
+    for (const Vector3d& ray : pixel_rays(320, 240, 60.0 * kDeg, 45.0 * kDeg))
+        cloud.points.push_back(ray * (depth_m / ray.z()));
+    return cloud;
+}
+
+/// Distance along unit `d_world` from `o_world` (inside) to the room's walls.
+double room_range(const Vector3d& o_world, const Vector3d& d_world) {
+    double t = std::numeric_limits<double>::infinity();
+    for (int i = 0; i < 3; ++i) {
+        if (d_world[i] > 0.0) t = std::min(t, (kRoom.max()[i] - o_world[i]) / d_world[i]);
+        if (d_world[i] < 0.0) t = std::min(t, (kRoom.min()[i] - o_world[i]) / d_world[i]);
+    }
+    return t;
+}
+
+/// A 160 × 120, 70° × 55° depth frame of the room (the L515's FOV), sensor frame.
+PointCloud room_frame(const Eigen::Isometry3d& T_world_sensor) {
+    PointCloud cloud;
+    for (const Vector3d& ray : pixel_rays(160, 120, 70.0 * kDeg, 55.0 * kDeg))
+        cloud.points.push_back(
+            ray * room_range(T_world_sensor.translation(), T_world_sensor.linear() * ray));
+    return cloud;
+}
+
+/// Two positions, each: 8 headings level and pitched ±50°, then straight up and down.
+std::vector<Eigen::Isometry3d> room_views() {
+    std::vector<Eigen::Isometry3d> views;
+    for (const Vector3d& p : {Vector3d(-1.0, 0.0, 0.0), Vector3d(1.2, 0.3, 0.2)}) {
+        for (double pitch_deg : {0.0, 50.0, -50.0})
+            for (int k = 0; k < 8; ++k)
+                views.push_back(camera_pose(p, k * 45.0 * kDeg, pitch_deg * kDeg));
+        views.push_back(camera_pose(p, 0.0, 90.0 * kDeg));
+        views.push_back(camera_pose(p, 0.0, -90.0 * kDeg));
+    }
+    return views;
+}
+
+OccupancyOctree explored_room(double resolution_m) {
+    OccupancyOctreeConfig config;
+    config.resolution_m = resolution_m;
+    OccupancyOctree map(config);
+    for (const auto& T : room_views()) map.insert_depth_frame(room_frame(T), T);
+    return map;
+}
+
+/// The wall scene: the camera at a non-trivial pose, looking along world +x at the wall
+/// x = 3.05 (mid-voxel at 0.1 m).
+const Eigen::Isometry3d kWallPose = camera_pose(Vector3d(0.05, 0.02, 1.03), 0.0, 0.0);
+
+Vector3d wall_scene_point(double x_right_m, double y_down_m, double depth_m) {
+    return kWallPose * Vector3d(x_right_m, y_down_m, depth_m);
+}
+
+TEST(OccupancyOctree, WallFrameMarksFrustumFreeWallOccupiedAndBehindUnknown) {
+    OccupancyOctree map;
+    const InsertStats stats = map.insert_depth_frame(wall_frame(kWallM), kWallPose);
+    EXPECT_EQ(stats.points, 320u * 240u);
+    EXPECT_EQ(stats.misses, 0u);
+    for (const Vector3d& p :
+         {Vector3d(0, 0, kWallM), Vector3d(1.2, 0.8, kWallM), Vector3d(-1.3, -0.9, kWallM)})
+        EXPECT_EQ(map.query(wall_scene_point(p.x(), p.y(), p.z())), Occupancy::kOccupied)
+            << p.transpose();
+    for (const Vector3d& p : {Vector3d(0, 0, 1.5), Vector3d(0.5, 0.3, 2.0),
+                              Vector3d(-0.2, 0.1, 0.6), Vector3d(1.0, -0.7, 2.7)})
+        EXPECT_EQ(map.query(wall_scene_point(p.x(), p.y(), p.z())), Occupancy::kFree)
+            << p.transpose();
+    for (const Vector3d& p : {Vector3d(0, 0, 3.4), Vector3d(0.5, 0.5, 4.5), Vector3d(2.5, 0, 1.0)})
+        EXPECT_EQ(map.query(wall_scene_point(p.x(), p.y(), p.z())), Occupancy::kUnknown)
+            << p.transpose();
+
+    // Ground truth: the pyramid up to the wall has volume base · height / 3, base = the wall.
+    const double wall_area_m2 =
+        (2.0 * kWallM * std::tan(30.0 * kDeg)) * (2.0 * kWallM * std::tan(22.5 * kDeg));
+    const double pyramid_m3 = wall_area_m2 * kWallM / 3.0;
+    // Free voxels overhang the pyramid's ~20 m² of faces by about half a voxel: +12 % expected
+    // at 0.1 m (+13 % measured); an unswept or uncut frustum is off by far more.
+    constexpr double kFreeTolerance = 0.15;
+    constexpr double kOccupiedTolerance = 0.30;  // one voxel layer ± the wall's edge voxels
+    EXPECT_NEAR(map.free_volume_m3(), pyramid_m3, kFreeTolerance * pyramid_m3);
+    EXPECT_NEAR(map.occupied_volume_m3(), wall_area_m2 * 0.1,
+                kOccupiedTolerance * wall_area_m2 * 0.1);
+    EXPECT_NEAR(map.explored_volume_m3(), map.free_volume_m3() + map.occupied_volume_m3(), 1e-9);
+}
+
+TEST(OccupancyOctree, MissingReturnsClearFreeSpaceToMaxRangeOnly) {
+    OccupancyOctree map;                 // max_range_m = 5
+    PointCloud frame = wall_frame(8.0);  // every return beyond reach
+    const std::size_t num_far = frame.size();
+    for (int i = 0; i < 100; ++i) frame.points.push_back(Vector3d(kNaN, 0.0, 1.0));
+    frame.points.push_back(Vector3d(0.0, std::numeric_limits<double>::infinity(), 1.0));
+    const InsertStats stats = map.insert_depth_frame(frame, kWallPose);
+    EXPECT_EQ(stats.points, num_far);
+    EXPECT_EQ(stats.misses, num_far);
+    EXPECT_EQ(stats.dropped_non_finite, 101u);
+    EXPECT_EQ(map.occupied_volume_m3(), 0.0);
+    EXPECT_GT(map.free_volume_m3(), 0.0);
+    EXPECT_EQ(map.query(wall_scene_point(0, 0, 4.7)), Occupancy::kFree);
+    EXPECT_EQ(map.query(wall_scene_point(0, 0, 5.3)), Occupancy::kUnknown);
+    EXPECT_EQ(map.query(wall_scene_point(0, 0, 8.0)), Occupancy::kUnknown);
+}
+
+TEST(OccupancyOctree, ExploredVolumeGrowsMonotonicallyToTheRoomVolume) {
+    OccupancyOctree map;
+    double previous_m3 = 0.0;
+    for (const auto& T : room_views()) {
+        map.insert_depth_frame(room_frame(T), T);
+        const double explored_m3 = map.explored_volume_m3();
+        EXPECT_GE(explored_m3, previous_m3 - 1e-9);
+        previous_m3 = explored_m3;
+    }
+    const double room_m3 = kRoom.volume();  // 72 m³
+    // Issue 16: "within 10 % of the room's volume". The wall voxels overhang the 108 m² of
+    // walls by 0.025 or 0.075 m: +7.5 % expected (+7.7 % measured).
+    constexpr double kRoomTolerance = 0.10;
+    EXPECT_NEAR(map.explored_volume_m3(), room_m3, kRoomTolerance * room_m3);
+}
+
+TEST(OccupancyOctree, UnknownVolumeOfBoxesBehindAndBeforeTheWall) {
+    OccupancyOctree map;
+    constexpr double kRes = 0.1;
+    const Eigen::AlignedBox3d empty(Vector3d(1, 1, 1), Vector3d(0, 0, 0));
+    EXPECT_EQ(map.unknown_volume_in_m3(empty), 0.0);
+    // Before any frame, a 1 × 0.5 × 0.6 m box is all unknown.
+    const Eigen::AlignedBox3d box(Vector3d(3.5, -0.25, 0.7), Vector3d(4.5, 0.25, 1.3));
+    const double layer_m3 = 2.0 * (1.0 * 0.5 + 1.0 * 0.6 + 0.5 * 0.6) * kRes;  // one voxel skin
+    EXPECT_NEAR(map.unknown_volume_in_m3(box), box.volume(), layer_m3);
+    map.insert_depth_frame(wall_frame(kWallM), kWallPose);
+    EXPECT_NEAR(map.unknown_volume_in_m3(box), box.volume(), layer_m3);  // behind the wall
+    // 1.0-2.0 m in front of the camera (world x), well inside the frustum: all free.
+    const Eigen::AlignedBox3d seen(Vector3d(1.0, -0.3, 0.8), Vector3d(2.0, 0.3, 1.2));
+    EXPECT_LE(map.unknown_volume_in_m3(seen), 2.0 * kRes * kRes * kRes);
+}
+
+TEST(OccupancyOctree, HalfAndTenthMetreResolutionsClassifyTheRoomAlike) {
+    const OccupancyOctree coarse = explored_room(0.1), fine = explored_room(0.05);
+    EXPECT_DOUBLE_EQ(fine.resolution_m(), 0.05);
+    struct Probe {
+        Vector3d p_world;
+        Occupancy truth;
+    };
+    const std::vector<Probe> probes = {
+        {{0.0, 0.0, 0.0}, Occupancy::kFree},       {{-2.0, 1.0, 0.8}, Occupancy::kFree},
+        {{2.0, -1.0, -0.7}, Occupancy::kFree},     {{1.0, 1.5, 1.0}, Occupancy::kFree},
+        {{3.025, 0.3, 0.2}, Occupancy::kOccupied}, {{-2.975, 0.0, 0.0}, Occupancy::kOccupied},
+        {{0.0, 2.025, 0.1}, Occupancy::kOccupied}, {{0.5, -1.975, 0.0}, Occupancy::kOccupied},
+        {{0.2, 0.1, 1.525}, Occupancy::kOccupied}, {{-0.9, 0.1, -1.475}, Occupancy::kOccupied},
+        {{3.6, 0.0, 0.0}, Occupancy::kUnknown},    {{0.0, 2.6, 0.0}, Occupancy::kUnknown},
+        {{0.0, 0.0, -2.1}, Occupancy::kUnknown},   {{-3.5, 1.0, 1.0}, Occupancy::kUnknown},
+    };
+    for (const Probe& probe : probes) {
+        EXPECT_EQ(coarse.query(probe.p_world), probe.truth) << probe.p_world.transpose();
+        EXPECT_EQ(fine.query(probe.p_world), probe.truth) << probe.p_world.transpose();
+    }
+}
+
+TEST(OccupancyOctree, BadConfigPoseAndPathAreClearErrors) {
+    const auto with = [](auto edit) {
+        OccupancyOctreeConfig config;
+        edit(config);
+        return config;
+    };
+    SCANTLING_EXPECT_ERROR(OccupancyOctree(with([](auto& c) { c.resolution_m = 0.0; })),
+                           ConfigError, "occupancy_octree.resolution_m");
+    SCANTLING_EXPECT_ERROR(OccupancyOctree(with([](auto& c) { c.resolution_m = -0.1; })),
+                           ConfigError, "occupancy_octree.resolution_m");
+    SCANTLING_EXPECT_ERROR(OccupancyOctree(with([](auto& c) { c.resolution_m = kNaN; })),
+                           ConfigError, "occupancy_octree.resolution_m");
+    SCANTLING_EXPECT_ERROR(OccupancyOctree(with([](auto& c) { c.max_range_m = 0.0; })), ConfigError,
+                           "occupancy_octree.max_range_m");
+    SCANTLING_EXPECT_ERROR(OccupancyOctree(with([](auto& c) { c.prob_hit = 0.4; })), ConfigError,
+                           "occupancy_octree.prob_hit");
+    SCANTLING_EXPECT_ERROR(OccupancyOctree(with([](auto& c) { c.prob_miss = 0.6; })), ConfigError,
+                           "occupancy_octree.prob_miss");
+    SCANTLING_EXPECT_ERROR(OccupancyOctree(with([](auto& c) { c.clamp_min = 0.6; })), ConfigError,
+                           "occupancy_octree.clamp_min");
+    SCANTLING_EXPECT_ERROR(OccupancyOctree(with([](auto& c) { c.clamp_max = 0.45; })), ConfigError,
+                           "occupancy_octree.clamp_max");
+    SCANTLING_EXPECT_ERROR(OccupancyOctree(with([](auto& c) { c.occupied_threshold = 1.0; })),
+                           ConfigError, "occupancy_octree.occupied_threshold");
+
+    OccupancyOctree map;
+    Eigen::Isometry3d bad_pose = kWallPose;
+    bad_pose.translation().x() = kNaN;
+    SCANTLING_EXPECT_ERROR(map.insert_depth_frame(wall_frame(kWallM), bad_pose), InputError,
+                           "T_world_sensor");
+    EXPECT_THROW(map.query(Vector3d(kNaN, 0, 0)), InputError);
+
+    const std::filesystem::path missing =
+        std::filesystem::temp_directory_path() / "scantling_no_such_dir_octree" / "map.bt";
+    EXPECT_THROW(map.write_binary(missing.string()), FileError);
+    EXPECT_FALSE(std::filesystem::exists(missing.parent_path()));
+}
+
+TEST(OccupancyOctree, BinaryFileReadsBackWithOctoMapsOwnReader) {
+    OccupancyOctree map;
+    map.insert_depth_frame(wall_frame(kWallM), kWallPose);
+    const std::filesystem::path path =
+        std::filesystem::temp_directory_path() / "scantling_occupancy_octree_test.bt";
+    map.write_binary(path.string());
+    octomap::OcTree tree(0.1);
+    ASSERT_TRUE(tree.readBinary(path.string()));
+    EXPECT_EQ(tree.getNumLeafNodes(), map.num_leaves());
+    EXPECT_DOUBLE_EQ(tree.getResolution(), map.resolution_m());
+    for (const Vector3d& p : {wall_scene_point(0, 0, kWallM), wall_scene_point(0, 0, 1.5)}) {
+        const octomap::OcTreeNode* node = tree.search(p.x(), p.y(), p.z());
+        ASSERT_NE(node, nullptr);
+        EXPECT_EQ(tree.isNodeOccupied(node), map.query(p) == Occupancy::kOccupied);
+    }
+    std::filesystem::remove(path);
+}
+
+}  // namespace
+}  // namespace scantling::mapping
