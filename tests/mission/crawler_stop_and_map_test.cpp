@@ -190,12 +190,12 @@ TEST(CrawlerStopAndMap, AnObstacleOnThePathSlowsThenPausesForTheOperator) {
 
 TEST(CrawlerStopAndMap, AnObstacleOnThePathIsPassedOnADetour) {
     // The first transect 1 m long (y from -0.3 to 0.7), the bracket across it at y = 0.15, a bolt
-    // 0.25 m to the left of the transect at y = 0.25, both in view from the first stop: stopped
+    // 0.2 m to the left of the transect at y = 0.3, both in view from the first stop: stopped
     // short of the bracket, the crawler replans the rest of the transect around it on its right
-    // (the left passes the bolt too near) and goes on without the operator.
+    // (the left passes the bolt too near) and rejoins the transect past the bolt (the first
+    // rejoin point is too near it), and goes on without the operator.
     std::string text = replaced(blocked_plate("0.15"), "height_m: 0.6", "height_m: 1.0");
-    text =
-        replaced(text, "position_world: [-0.35, 0.1, 0.0]", "position_world: [-0.25, 0.25, 0.0]");
+    text = replaced(text, "position_world: [-0.35, 0.1, 0.0]", "position_world: [-0.2, 0.3, 0.0]");
     const CrawlerMissionScenario m = parse_crawler_mission_scenario(text, "detour.yaml");
     const fs::path dir =
         fs::path(::testing::TempDir()) / ("scantling_detour_" + std::to_string(::getpid()));
@@ -218,7 +218,7 @@ TEST(CrawlerStopAndMap, AnObstacleOnThePathIsPassedOnADetour) {
     // The bracket (0.12 × 0.06 m) passed well clear, though at less than the detour's clearance
     // from its true centre (0.2 m from the mapped footprint: the stop sees its near face only,
     // and the follower cuts the detour's corners), the bolt kept clear of too.
-    const Eigen::Vector3d bracket(0.0, 0.15, 0.0), bolt(-0.25, 0.25, 0.0);
+    const Eigen::Vector3d bracket(0.0, 0.15, 0.0), bolt(-0.2, 0.3, 0.0);
     double closest_bracket_m = 1e9, closest_bolt_m = 1e9;
     for (const io::StampedPose& p : truth) {
         closest_bracket_m =

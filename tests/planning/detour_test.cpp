@@ -243,6 +243,33 @@ TEST(Detour, KeepsToAMeshPlateAwayFromItsEdge) {
     EXPECT_LT((detour.path.back().end_world_m - goal).norm(), 1e-9);
 }
 
+TEST(Detour, RejoinsLaterWhenAnObstacleStandsBesideTheFirstRejoinPoint) {
+    // The blocking obstacle on the path at x = 0, a second one 0.2 m to the left of the path
+    // just past the first rejoin point (x = 0.4 + 0.1): rejoining at x = 0.4 from the right
+    // passes it at 0.2 m, inside its 0.05 + 0.2 m; rejoining at x = 0.7 passes it clear.
+    const PlateSurface surface = plate();
+    const Eigen::Vector3d crawler(-1.0, 0, 0), goal(2, 0, 0);
+    const std::vector<ObstacleFootprint> obstacles = {
+        {.centre_world_m = {0, 0, 0}, .radius_m = 0.1},
+        {.centre_world_m = {0.5, 0.2, 0}, .radius_m = 0.05}};
+    DetourConfig config;
+    config.max_offset_m = 0.3;  // no wider way round on the left
+    const Detour detour = plan_detour(surface, crawler, surface_line(surface, crawler, goal),
+                                      obstacles, 0, {}, config);
+    ASSERT_TRUE(detour.found) << detour.reason;
+    EXPECT_EQ(detour.side, -1);
+    EXPECT_GT(detour.rejoin_world_m.x(), 0.45);  // later than s_o + r + R = 0.4
+    // The new pieces (before the rejoin) clear both; the old path after it is the plan the
+    // second obstacle did not block.
+    Path fresh;
+    for (const MeshPathSegment& seg : detour.path) {
+        if (seg.begin_world_m.x() < detour.rejoin_world_m.x() - 1e-9) fresh.push_back(seg);
+    }
+    EXPECT_GE(min_distance_m(fresh, obstacles[0].centre_world_m), 0.3 - kClearanceTolerance_m);
+    EXPECT_GE(min_distance_m(fresh, obstacles[1].centre_world_m), 0.25 - kClearanceTolerance_m);
+    EXPECT_LT((detour.path.back().end_world_m - goal).norm(), 1e-9);
+}
+
 TEST(Detour, NotFoundWhenTheObstacleCoversTheGoal) {
     const PlateSurface surface = plate();
     const Eigen::Vector3d crawler(-1.5, 0, 0), goal(2, 0, 0);

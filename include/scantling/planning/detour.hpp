@@ -17,8 +17,10 @@
 /// fails that side.
 ///
 /// Offsets and sides. The offset d is first r + clearance_m, then grows by offset_step_m up to
-/// max_offset_m while the path passes another obstacle too near; the first d whose path is
-/// clear wins on each side. Of the two sides, the shorter path is chosen (ties: left).
+/// max_offset_m while the path passes another obstacle too near; at each d the rejoin distance
+/// R is rejoin_m, then twice and three times it (an obstacle beside the old path near the first
+/// rejoin point is passed by rejoining later); the first clear path wins on each side. Of the
+/// two sides, the shorter path is chosen (ties: left).
 ///
 /// Clear. Every footprint is measured from its centre projected onto the surface, in 3D (a
 /// chord: on a curved surface no longer than the distance along it, so on the safe side), to
