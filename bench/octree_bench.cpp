@@ -10,6 +10,10 @@
 //             removed (its natural input: the conversion we do inside ours is free for it).
 // One iteration inserts all frames into a fresh map at 0.1 or 0.05 m (SPEC §8's resolutions);
 // counters: points/s (items_per_second) and the final leaf count of each.
+//   gain_…    one OccupancyOctree::visible_unknown_volume call (SPEC §8's E(M, ξ), the default
+//             32 × 24-ray, 5 m frustum) from the compartment's middle looking along it, on the
+//             map of all 100 frames (built once, untimed: rays stop at walls, all seen) and on an
+//             empty map (the worst case: every ray runs 5 m through unknown voxels).
 // Results in docs/benchmarks.md, "Occupancy octree insertion (issue 16)".
 #include <algorithm>
 #include <cmath>
@@ -143,6 +147,25 @@ void bench_octomap(benchmark::State& state, const std::vector<Frame>* frames, do
     state.counters["leaves"] = static_cast<double>(leaves);
 }
 
+void bench_gain(benchmark::State& state, const std::vector<Frame>* frames, double res_m,
+                bool explored) {
+    mapping::OccupancyOctreeConfig config;
+    config.resolution_m = res_m;
+    config.max_range_m = kMaxRangeM;
+    mapping::OccupancyOctree map(config);
+    if (explored)
+        for (const Frame& f : *frames) map.insert_depth_frame(f.points_sensor, f.T_world_sensor);
+    Eigen::Isometry3d T_world_camera = Eigen::Isometry3d::Identity();  // x forward: along it
+    T_world_camera.translation() = Vector3d(0.3, 0.1, 0.2);
+    mapping::VisibleVolume seen;
+    for (auto _ : state) {
+        seen = map.visible_unknown_volume(T_world_camera);
+        benchmark::DoNotOptimize(seen);
+    }
+    state.counters["unknown_m3"] = seen.unknown_m3;
+    state.counters["rays_blocked"] = static_cast<double>(seen.rays_blocked);
+}
+
 }  // namespace
 }  // namespace scantling::bench
 
@@ -168,6 +191,15 @@ int main(int argc, char** argv) {
             ->Unit(benchmark::kMillisecond)
             ->UseRealTime()
             ->Iterations(1);
+        // Own case names: "<case>/gain" would pair with "<case>/ours" in the ratio table.
+        for (const bool explored : {true, false}) {
+            benchmark::RegisterBenchmark(fmt::format("gain_res{:.2f}/{}/1thr", res_m,
+                                                     explored ? "explored_map" : "empty_map")
+                                             .c_str(),
+                                         bench_gain, &frames, res_m, explored)
+                ->Unit(benchmark::kMicrosecond)
+                ->UseRealTime();
+        }
     }
     return run_all(argc, argv);
 }

@@ -1,9 +1,12 @@
 #include <scantling/mapping/occupancy_octree.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <numbers>
 #include <ostream>
 #include <utility>
+#include <vector>
 
 #include <fmt/format.h>
 #include <octomap/OcTree.h>
@@ -50,6 +53,36 @@ LeafVolumes leaf_volumes(const octomap::OcTree& tree) {
     return volumes;
 }
 
+/// Unit rays of `view` in the camera frame (x forward), on an evenly spaced grid of the angles
+/// atan(y / x) and atan(z / x): the edge rays are the edges of a pinhole's rectangular pyramid.
+std::vector<Eigen::Vector3d> frustum_directions(const ViewFrustum& view) {
+    std::vector<Eigen::Vector3d> directions;
+    directions.reserve(static_cast<std::size_t>(view.rays_horizontal) *
+                       static_cast<std::size_t>(view.rays_vertical));
+    const auto angle = [](double fov_rad, int i, int n) {
+        return fov_rad * (static_cast<double>(i) / (n - 1) - 0.5);
+    };
+    for (int v = 0; v < view.rays_vertical; ++v) {
+        const double tan_v = std::tan(angle(view.vertical_fov_rad, v, view.rays_vertical));
+        for (int h = 0; h < view.rays_horizontal; ++h) {
+            const double tan_h = std::tan(angle(view.horizontal_fov_rad, h, view.rays_horizontal));
+            directions.push_back(Eigen::Vector3d(1.0, tan_h, tan_v).normalized());
+        }
+    }
+    return directions;
+}
+
+/// The length, at most `length_m`, for which the ray from `o` (inside) along `d` stays in the
+/// cube |x_i| <= half_extent_m.
+double clip_to_cube(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double length_m,
+                    double half_extent_m) {
+    for (int i = 0; i < 3; ++i) {
+        if (d[i] > 0.0) length_m = std::min(length_m, (half_extent_m - o[i]) / d[i]);
+        if (d[i] < 0.0) length_m = std::min(length_m, (-half_extent_m - o[i]) / d[i]);
+    }
+    return length_m;
+}
+
 }  // namespace
 
 void OccupancyOctreeConfig::validate(std::string_view prefix) const {
@@ -67,6 +100,18 @@ void OccupancyOctreeConfig::validate(std::string_view prefix) const {
     require_below(clamp_min, occupied_threshold, prefix, "clamp_min", "occupied_threshold");
     require(clamp_max < 1.0, prefix, "clamp_max", clamp_max, "< 1");
     require_above(clamp_max, occupied_threshold, prefix, "clamp_max", "occupied_threshold");
+}
+
+void ViewFrustum::validate(std::string_view prefix) const {
+    using namespace config_checks;
+    // A FOV of pi or more has no pinhole pyramid (tan of ±pi/2 diverges).
+    require(horizontal_fov_rad > 0.0 && horizontal_fov_rad < std::numbers::pi, prefix,
+            "horizontal_fov_rad", horizontal_fov_rad, "in (0, pi)");
+    require(vertical_fov_rad > 0.0 && vertical_fov_rad < std::numbers::pi, prefix,
+            "vertical_fov_rad", vertical_fov_rad, "in (0, pi)");
+    require_positive(max_depth_m, prefix, "max_depth_m");
+    require_at_least(rays_horizontal, 2, prefix, "rays_horizontal");
+    require_at_least(rays_vertical, 2, prefix, "rays_vertical");
 }
 
 struct OccupancyOctree::Impl {
@@ -89,6 +134,22 @@ struct OccupancyOctree::Impl {
                 origin_world.x(), origin_world.y(), origin_world.z(), half_extent_m,
                 config.resolution_m));
         }
+    }
+
+    /// Walks one ray's voxels from its origin, collecting the unknown ones into `unknown`, up
+    /// to the first occupied one; true when an occupied voxel stopped it.
+    bool walk_ray(const octomap::point3d& origin, const octomap::point3d& end, octomap::KeyRay& ray,
+                  octomap::KeySet& unknown) const {
+        if (!tree.computeRayKeys(origin, end, ray)) return false;  // not after clipping
+        for (const octomap::OcTreeKey& key : ray) {
+            const octomap::OcTreeNode* node = tree.search(key);
+            if (node == nullptr) {
+                unknown.insert(key);
+            } else if (tree.isNodeOccupied(node)) {
+                return true;
+            }
+        }
+        return false;
     }
 
     OccupancyOctreeConfig config;
@@ -185,6 +246,37 @@ double OccupancyOctree::unknown_volume_in_m3(const Eigen::AlignedBox3d& box_worl
         }
     }
     return static_cast<double>(unknown) * res_m * res_m * res_m;
+}
+
+VisibleVolume OccupancyOctree::visible_unknown_volume(const Eigen::Isometry3d& T_world_camera,
+                                                      const ViewFrustum& view) const {
+    if (!T_world_camera.matrix().allFinite())
+        throw InputError("occupancy_octree: visible_unknown_volume T_world_camera is not finite");
+    view.validate("view_frustum");
+    const double res_m = impl_->config.resolution_m;
+    // One voxel inside the map's edge, so float rounding never puts a ray's end outside it.
+    const double half_extent_m = (kHalfKeyRange - 1.0) * res_m;
+    const Eigen::Vector3d o_world = T_world_camera.translation();
+    if (o_world.cwiseAbs().maxCoeff() >= half_extent_m) {
+        throw InputError(fmt::format(
+            "occupancy_octree: visible_unknown_volume camera at ({}, {}, {}) m is outside the "
+            "map (±{} m)",
+            o_world.x(), o_world.y(), o_world.z(), half_extent_m));
+    }
+    VisibleVolume result;
+    octomap::KeySet unknown;  // a voxel crossed by several rays counts once
+    octomap::KeyRay ray;
+    for (const Eigen::Vector3d& d_camera : frustum_directions(view)) {
+        const Eigen::Vector3d d_world = T_world_camera.linear() * d_camera;
+        const double length_m = clip_to_cube(o_world, d_world, view.max_depth_m, half_extent_m);
+        const bool blocked = impl_->walk_ray(
+            to_point3d(o_world), to_point3d(o_world + length_m * d_world), ray, unknown);
+        ++result.rays;
+        result.rays_blocked += blocked ? 1 : 0;
+    }
+    result.unknown_voxels = unknown.size();
+    result.unknown_m3 = static_cast<double>(unknown.size()) * res_m * res_m * res_m;
+    return result;
 }
 
 std::size_t OccupancyOctree::num_leaves() const { return impl_->tree.getNumLeafNodes(); }

@@ -257,6 +257,136 @@ TEST(OccupancyOctree, BadConfigPoseAndPathAreClearErrors) {
     EXPECT_FALSE(std::filesystem::exists(missing.parent_path()));
 }
 
+/// The body-convention pose (x forward, z up) of a camera_pose: its optical rotation undone.
+Eigen::Isometry3d body_pose(const Eigen::Isometry3d& T_world_optical) {
+    Eigen::Isometry3d T = T_world_optical;
+    T.linear() = T_world_optical.linear() * rotation_body_optical().transpose();
+    return T;
+}
+
+/// A narrow view well inside the wall frame's 60° × 45°, reaching `max_depth_m`.
+ViewFrustum narrow_view(double max_depth_m) {
+    ViewFrustum view;
+    view.horizontal_fov_rad = 0.2;
+    view.vertical_fov_rad = 0.2;
+    view.max_depth_m = max_depth_m;
+    view.rays_horizontal = 8;
+    view.rays_vertical = 8;
+    return view;
+}
+
+/// Voxel counts bracketing what the rays of `view` from the identity pose can reach in an empty
+/// map (brute force over the voxels). Rays stay in the pinhole pyramid P and within max_depth_m
+/// of the apex, so: every voxel they cross meets P, hence its centre is within half a voxel
+/// diagonal of each of P's 5 face planes (`upper`); and where the rays are denser than the
+/// voxels, every voxel wholly inside P ∩ the ball of radius max_depth_m is crossed (`lower`).
+struct FrustumVoxelBounds {
+    std::size_t lower = 0, upper = 0;
+};
+
+FrustumVoxelBounds frustum_voxel_bounds(const ViewFrustum& view, double res_m) {
+    const double d = view.max_depth_m, th = std::tan(view.horizontal_fov_rad / 2.0),
+                 tv = std::tan(view.vertical_fov_rad / 2.0);
+    const auto max_plane_distance = [&](const Vector3d& p) {  // > 0 outside P
+        return std::max({(std::abs(p.y()) - p.x() * th) / std::hypot(1.0, th),
+                         (std::abs(p.z()) - p.x() * tv) / std::hypot(1.0, tv), p.x() - d});
+    };
+    const double margin_m = 0.5 * std::sqrt(3.0) * res_m + 1e-6;  // + float ray rounding
+    const int n = static_cast<int>(std::ceil(d / res_m)) + 2;
+    FrustumVoxelBounds bounds;
+    for (int i = -2; i <= n; ++i) {
+        for (int j = -n; j <= n; ++j) {
+            for (int k = -n; k <= n; ++k) {
+                const Vector3d corner = Vector3d(i, j, k) * res_m;
+                bounds.upper +=
+                    max_plane_distance(corner + Vector3d::Constant(0.5 * res_m)) <= margin_m;
+                bool inside = true;
+                for (int c = 0; c < 8; ++c) {
+                    const Vector3d p = corner + Vector3d(c & 1, (c >> 1) & 1, c >> 2) * res_m;
+                    inside = inside && max_plane_distance(p) <= 0.0 && p.norm() <= d;
+                }
+                bounds.lower += inside;
+            }
+        }
+    }
+    return bounds;
+}
+
+TEST(OccupancyOctree, VisibleUnknownVolumeOfAnEmptyMapFillsTheFrustum) {
+    const OccupancyOctree map;  // 0.1 m
+    constexpr double kVoxelM3 = 0.001;
+    // Rays 0.2 / 7 rad apart: denser than the voxels everywhere within the 2 m reach.
+    const ViewFrustum dense = narrow_view(2.0);
+    const VisibleVolume seen = map.visible_unknown_volume(Eigen::Isometry3d::Identity(), dense);
+    EXPECT_EQ(seen.rays, 64u);
+    EXPECT_EQ(seen.rays_blocked, 0u);
+    EXPECT_DOUBLE_EQ(seen.unknown_m3, static_cast<double>(seen.unknown_voxels) * kVoxelM3);
+    const FrustumVoxelBounds bounds = frustum_voxel_bounds(dense, 0.1);
+    EXPECT_GT(bounds.lower, 0u);
+    EXPECT_GE(seen.unknown_voxels, bounds.lower);
+    EXPECT_LE(seen.unknown_voxels, bounds.upper);
+
+    // Rays 1.0 / 7 rad apart, ~ 0.29 m at 2 m, sparser than the voxels: a sampled lower bound
+    // of the pyramid, base (2 d tan(h/2)) × (2 d tan(v/2)), height d.
+    ViewFrustum sparse = dense;
+    sparse.horizontal_fov_rad = sparse.vertical_fov_rad = 1.0;
+    const double d = sparse.max_depth_m;
+    const double pyramid_m3 = (2.0 * d * std::tan(0.5)) * (2.0 * d * std::tan(0.5)) * d / 3.0;
+    const VisibleVolume sampled = map.visible_unknown_volume(Eigen::Isometry3d::Identity(), sparse);
+    EXPECT_GT(sampled.unknown_m3, 0.0);
+    EXPECT_LE(sampled.unknown_m3, pyramid_m3);
+}
+
+TEST(OccupancyOctree, VisibleUnknownVolumeVanishesWhereAFrameSawAndStaysBehindIt) {
+    const Eigen::Isometry3d T_world_camera = body_pose(kWallPose);
+    Eigen::Isometry3d T_world_back = T_world_camera;
+    T_world_back.linear() =
+        T_world_camera.linear() *
+        Eigen::AngleAxisd(std::numbers::pi, Vector3d::UnitZ()).toRotationMatrix();
+    const ViewFrustum view = narrow_view(4.0);  // beyond the wall at 3 m
+    OccupancyOctree map;
+    const VisibleVolume empty_ahead = map.visible_unknown_volume(T_world_camera, view);
+    const VisibleVolume empty_back = map.visible_unknown_volume(T_world_back, view);
+    map.insert_depth_frame(wall_frame(kWallM), kWallPose);
+    const VisibleVolume ahead = map.visible_unknown_volume(T_world_camera, view);
+    const VisibleVolume back = map.visible_unknown_volume(T_world_back, view);
+    EXPECT_LT(ahead.unknown_m3, 0.02 * empty_ahead.unknown_m3);
+    EXPECT_GT(ahead.rays_blocked, 0.9 * ahead.rays);
+    // The frame saw nothing behind the camera: only the camera's own voxel, where its rays
+    // start, is now known (free).
+    EXPECT_EQ(map.query(T_world_camera.translation()), Occupancy::kFree);
+    EXPECT_EQ(back.unknown_voxels + 1, empty_back.unknown_voxels);
+    EXPECT_EQ(back.rays_blocked, 0u);
+}
+
+TEST(OccupancyOctree, VisibleUnknownVolumeRejectsBadViewsAndPoses) {
+    const OccupancyOctree map;
+    const auto seen_with = [&](auto edit) {
+        ViewFrustum view;
+        edit(view);
+        return map.visible_unknown_volume(Eigen::Isometry3d::Identity(), view);
+    };
+    SCANTLING_EXPECT_ERROR(seen_with([](auto& v) { v.horizontal_fov_rad = std::numbers::pi; }),
+                           ConfigError, "view_frustum.horizontal_fov_rad");
+    SCANTLING_EXPECT_ERROR(seen_with([](auto& v) { v.horizontal_fov_rad = 0.0; }), ConfigError,
+                           "view_frustum.horizontal_fov_rad");
+    SCANTLING_EXPECT_ERROR(seen_with([](auto& v) { v.vertical_fov_rad = 4.0; }), ConfigError,
+                           "view_frustum.vertical_fov_rad");
+    SCANTLING_EXPECT_ERROR(seen_with([](auto& v) { v.vertical_fov_rad = kNaN; }), ConfigError,
+                           "view_frustum.vertical_fov_rad");
+    SCANTLING_EXPECT_ERROR(seen_with([](auto& v) { v.max_depth_m = 0.0; }), ConfigError,
+                           "view_frustum.max_depth_m");
+    SCANTLING_EXPECT_ERROR(seen_with([](auto& v) { v.rays_horizontal = 1; }), ConfigError,
+                           "view_frustum.rays_horizontal");
+    SCANTLING_EXPECT_ERROR(seen_with([](auto& v) { v.rays_vertical = 0; }), ConfigError,
+                           "view_frustum.rays_vertical");
+    Eigen::Isometry3d bad_pose = Eigen::Isometry3d::Identity();
+    bad_pose.translation().z() = kNaN;
+    SCANTLING_EXPECT_ERROR(map.visible_unknown_volume(bad_pose), InputError, "T_world_camera");
+    bad_pose.translation().z() = 1e4;  // beyond the ±3.3 km map at 0.1 m
+    SCANTLING_EXPECT_ERROR(map.visible_unknown_volume(bad_pose), InputError, "outside the map");
+}
+
 TEST(OccupancyOctree, BinaryFileReadsBackWithOctoMapsOwnReader) {
     OccupancyOctree map;
     map.insert_depth_frame(wall_frame(kWallM), kWallPose);
