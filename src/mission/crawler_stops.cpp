@@ -25,6 +25,14 @@ std::size_t count(const std::vector<perception::MappedObstacle>& obstacles,
     return n;
 }
 
+/// True when `o` was mapped within kClearedRadiusM of one of `places`: the same obstacle seen
+/// again, or its shadow.
+bool near_any(const std::vector<Eigen::Vector3d>& places, const perception::MappedObstacle& o) {
+    return std::any_of(places.begin(), places.end(), [&](const Eigen::Vector3d& c) {
+        return (c - o.centroid_world_m).norm() < kClearedRadiusM;
+    });
+}
+
 /// The disc around an obstacle's cluster: half its extent's diagonal, m.
 double footprint_radius(const perception::MappedObstacle& o) {
     return 0.5 * (o.max_body_xy_m - o.min_body_xy_m).norm();
@@ -56,9 +64,7 @@ void CrawlerStack::add_image(const io::RgbImage& image, const PinholeIntrinsics&
 }
 
 bool CrawlerStack::cleared(const perception::MappedObstacle& o) const {
-    return std::any_of(cleared_world_m_.begin(), cleared_world_m_.end(), [&](const auto& c) {
-        return (c - o.centroid_world_m).norm() < kClearedRadiusM;
-    });
+    return near_any(cleared_world_m_, o);
 }
 
 void CrawlerStack::slow_for_obstacles(CrawlerStackCommand& out, double t_s) {
@@ -69,10 +75,7 @@ void CrawlerStack::slow_for_obstacles(CrawlerStackCommand& out, double t_s) {
     std::size_t nearest = 0;
     for (std::size_t i = 0; i < obstacles_.size(); ++i) {
         const perception::MappedObstacle& o = obstacles_[i];
-        const bool passing = std::any_of(
-            passing_world_m_.begin(), passing_world_m_.end(),
-            [&](const auto& c) { return (c - o.centroid_world_m).norm() < kClearedRadiusM; });
-        if (cleared(o) || passing) continue;
+        if (cleared(o) || near_any(passing_world_m_, o)) continue;
         const Eigen::Vector3d p = T_body_world * o.centroid_world_m;
         const double radius_m = footprint_radius(o);
         if (p.x() <= 0.0 || std::abs(p.y()) > config_.corridor_half_width_m + radius_m) continue;
@@ -142,7 +145,7 @@ void CrawlerStack::count_distance() {
     const Eigen::Vector3d p = filter_.estimate().T_world_body.translation();
     if (last_p_) driven_m_ += (p - *last_p_).norm();
     last_p_ = p;
-    if (driven_m_ > kStopHereM) stop_here_.reset();
+    if (driven_m_ > kStopHereM) stop_cloud_here_.reset();
 }
 
 bool CrawlerStack::stopped_to_map(CrawlerStackCommand& out, double t_s) {
@@ -172,7 +175,7 @@ bool CrawlerStack::stopped_to_map(CrawlerStackCommand& out, double t_s) {
         const bool corridor_ahead =
             std::any_of(tasks_.begin() + static_cast<long>(task_), tasks_.end(),
                         [](const auto& t) { return t.needs_corridor(); });
-        if (corridor_ahead) stop_here_ = *out.stop;
+        if (corridor_ahead) stop_cloud_here_ = out.stop->cloud_body;
         remeasure_corridor(*out.stop, t_s, out.events);
     }
     stop_began_s_.reset();

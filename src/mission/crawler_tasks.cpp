@@ -97,10 +97,10 @@ perception::FaceCorridor CrawlerStack::corridor_of(const PointCloud& cloud_body,
 }
 
 bool CrawlerStack::lay_corridor(double t_s, std::vector<StackEvent>& events) {
-    const perception::StopMap stop = std::move(*stop_here_);
-    stop_here_.reset();  // one corridor per stop: the next task drives away from it
+    const PointCloud cloud_body = std::move(*stop_cloud_here_);
+    stop_cloud_here_.reset();  // one corridor per stop: the next task drives away from it
     Eigen::Vector3d origin, direction;
-    const perception::FaceCorridor corridor = corridor_of(stop.cloud_body, origin, direction);
+    const perception::FaceCorridor corridor = corridor_of(cloud_body, origin, direction);
     if (!corridor.found) {
         fail_task("no corridor in the stop's cloud: " + corridor.status, t_s, events);
         return false;
@@ -186,7 +186,7 @@ bool CrawlerStack::next_task(CrawlerStackCommand& out, double t_s) {
         return false;
     }
     const planning::SurfaceTask& task = tasks_[task_];
-    if (task.needs_corridor() && !stop_here_) {
+    if (task.needs_corridor() && !stop_cloud_here_) {
         stop_due_ = true;  // map here first: the corridor comes from the stop's cloud
         return false;
     }

@@ -14,8 +14,12 @@
 #include <scantling/core/config_checks.hpp>
 #include <scantling/core/error.hpp>
 
+#include "detail/surface_geometry.hpp"
+
 namespace scantling::planning {
 namespace {
+
+using detail::point_text;
 
 // Rounding allowed on a clearance: a passing leg laid exactly at radius + clearance on a plate
 // lands there to ~1e-15 m; a micrometre is far below any crawler's margin.
@@ -139,10 +143,6 @@ struct Context {
         return stations_for(s_crawler, s_obstacle, radius_m, old.length_m(), rejoin_m);
     }
 };
-
-std::string point_text(const Eigen::Vector3d& p) {
-    return fmt::format("({:.3f}, {:.3f}, {:.3f})", p.x(), p.y(), p.z());
-}
 
 /// Appends `pieces`, the first begun where `path` ends so the path is contiguous.
 void append_joined(std::vector<MeshPathSegment>& path, std::vector<MeshPathSegment> pieces) {

@@ -255,13 +255,12 @@ Region region_of(const TriangleMesh& mesh, const Eigen::Vector3d& a, const Eigen
     return region;
 }
 
-/// The exact path on `mesh`; nullopt when the goal is not reachable from the start and `whole`
-/// is false (a region may cut the way), InputError when it is true.
-std::optional<MeshPath> path_in(const TriangleMesh& mesh, const Eigen::Vector3d& start_world_m,
+/// The exact path on `mesh` (`surface` its CGAL form); nullopt when the goal is not reachable
+/// from the start and `whole` is false (a region may cut the way), InputError when it is true.
+std::optional<MeshPath> path_in(const TriangleMesh& mesh, const SurfaceMesh& surface,
+                                const Eigen::Vector3d& start_world_m,
                                 const Eigen::Vector3d& goal_world_m, const MeshPathConfig& config,
                                 bool whole) {
-    if (mesh.empty()) return std::nullopt;
-    const SurfaceMesh surface = to_surface_mesh(mesh);
     ShortestPath paths(surface);
     AabbTree tree;
     paths.build_aabb_tree(tree);
@@ -297,17 +296,19 @@ MeshPath shortest_path_on_mesh(const TriangleMesh& mesh, const Eigen::Vector3d& 
                                const Eigen::Vector3d& goal_world_m, const MeshPathConfig& config) {
     config.validate();
     check_facets(mesh);
-    // The whole mesh must be a manifold polygon mesh even where the region leaves it out (the
-    // contract; the conversion is a small share of the propagation's cost).
-    if (config.region_length_ratio > 0.0) to_surface_mesh(mesh);
+    // Converted (and so checked to be a manifold polygon mesh) whole even when the region's path
+    // is used: the contract covers the whole mesh, and the conversion is a small share of the
+    // propagation's cost.
+    const SurfaceMesh whole = to_surface_mesh(mesh);
     if (config.region_length_ratio > 0.0 && start_world_m.allFinite() && goal_world_m.allFinite()) {
         const double limit_m = config.region_length_ratio * ((goal_world_m - start_world_m).norm() +
                                                              2.0 * config.max_snap_distance_m);
         const Region region = region_of(mesh, start_world_m, goal_world_m, limit_m);
-        if (region.faces.size() < mesh.num_triangles()) {
+        if (!region.faces.empty() && region.faces.size() < mesh.num_triangles()) {
             std::optional<MeshPath> path;
             try {
-                path = path_in(region.mesh, start_world_m, goal_world_m, config, false);
+                path = path_in(region.mesh, to_surface_mesh(region.mesh), start_world_m,
+                               goal_world_m, config, false);
             } catch (const InputError&) {
                 // A region cut out of a manifold mesh may pinch at a vertex: the whole mesh.
             }
@@ -319,7 +320,7 @@ MeshPath shortest_path_on_mesh(const TriangleMesh& mesh, const Eigen::Vector3d& 
             }
         }
     }
-    return *path_in(mesh, start_world_m, goal_world_m, config, true);
+    return *path_in(mesh, whole, start_world_m, goal_world_m, config, true);
 }
 
 }  // namespace scantling::planning

@@ -20,8 +20,13 @@
 #include <scantling/core/config_checks.hpp>
 #include <scantling/core/error.hpp>
 
+#include "detail/surface_geometry.hpp"
+
 namespace scantling::planning {
 namespace {
+
+using detail::point_text;
+using detail::tangent;
 
 // A step that advances by less than this share of its length hit the surface's edge.
 constexpr double kMinProgress = 0.5;
@@ -30,14 +35,6 @@ constexpr double kMinProgress = 0.5;
 constexpr double kClampedShare = 0.02;
 // The pull of consecutive clamped steps that means the walk is sliding along the border.
 constexpr double kMaxSlideShare = 0.5;
-
-Eigen::Vector3d tangent(const Eigen::Vector3d& v, const Eigen::Vector3d& normal) {
-    return v - v.dot(normal) * normal;
-}
-
-std::string point_text(const Eigen::Vector3d& p) {
-    return fmt::format("({:.3f}, {:.3f}, {:.3f})", p.x(), p.y(), p.z());
-}
 
 /// A walk's steps on the surface, refused at the border as the file's comment says.
 class Walker {

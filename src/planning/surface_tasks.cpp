@@ -9,8 +9,12 @@
 
 #include <scantling/core/error.hpp>
 
+#include "detail/surface_geometry.hpp"
+
 namespace scantling::planning {
 namespace {
+
+using detail::tangent;
 
 constexpr std::array<std::pair<SurfaceTaskType, std::string_view>, 7> kNames{{
     {SurfaceTaskType::kGoTo, "go_to"},
@@ -21,10 +25,6 @@ constexpr std::array<std::pair<SurfaceTaskType, std::string_view>, 7> kNames{{
     {SurfaceTaskType::kDriveOnStiffener, "drive_on_stiffener"},
     {SurfaceTaskType::kDriveOnStiffenerSide, "drive_on_stiffener_side"},
 }};
-
-Eigen::Vector3d tangent(const Eigen::Vector3d& v, const Eigen::Vector3d& normal) {
-    return v - v.dot(normal) * normal;
-}
 
 void add_leg(TaskPlan& plan, std::vector<MeshPathSegment> segments, bool inspection) {
     if (segments.empty()) return;  // already there

@@ -252,8 +252,9 @@ class CrawlerStack {
     std::vector<Eigen::Vector3d> waypoints_;
     std::size_t transects_ = 0;
     double step_m_ = 0.0;
-    /// The last stop's cloud and map pose, while the crawler has not moved since.
-    std::optional<perception::StopMap> stop_here_;
+    /// The last stop's cloud (body frame) while the crawler has not moved since and a
+    /// stiffener drive is ahead: the drive's corridor is taken from it.
+    std::optional<PointCloud> stop_cloud_here_;
     std::size_t leg_ = 0;
     std::optional<control::SegmentFollower> follower_;
     control::MissionState state_ = control::MissionState::kIdle;
