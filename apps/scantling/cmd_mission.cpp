@@ -12,6 +12,7 @@
 #include <scantling/io/file_path.hpp>
 #include <scantling/mission/closed_loop.hpp>
 #include <scantling/mission/crawler_mission.hpp>
+#include <scantling/mission/exploration_mission.hpp>
 #include <scantling/mission/mission_scenario.hpp>
 #include <scantling/mission/rov_mission.hpp>
 #include <scantling/sim/scenario_runner.hpp>
@@ -213,6 +214,45 @@ void run_crawler_mission(const MissionOptions& options, std::ostream& out) {
     out << crawler_summary_text(scenario, result);
 }
 
+std::string exploration_summary_text(const mission::ExplorationMissionScenario& m,
+                                     const mission::ExplorationMissionResult& r) {
+    std::string text = fmt::format("recording: {}\n", r.directory);
+    text +=
+        fmt::format("scenario: {} (world {}, seed {}, explore, {} gain, map {:.2f} m, N_T {})\n",
+                    m.name, sim::to_string(m.simulation.world.type), m.simulation.seed,
+                    m.stack.nbv.defect_aware ? "defect-aware" : "vanilla", m.stack.map.resolution_m,
+                    m.stack.nbv.max_nodes);
+    text += fmt::format("final_state: {}{}\n", control::to_string(r.final_state),
+                        r.completed ? " (no gain left)" : " (exploration not finished)");
+    text += fmt::format("exploration_time: {:.1f} s\n", r.exploration_time_s);
+    text += fmt::format("reachable_free_mapped: {:.1f} % of {:.1f} m3 (explored {:.1f} m3)\n",
+                        100.0 * r.reachable_share, r.reachable_free_m3, r.explored_m3);
+    text += fmt::format("plans: {} ({} failed), {:.3f} s mean, {:.3f} s max\n", r.plans,
+                        r.plans_failed, r.plan_time_mean_s, r.plan_time_max_s);
+    text += fmt::format("detections_per_image: {:.2f} ({} in {} images), defects mapped {} of {}\n",
+                        r.detections_per_image, r.detections, r.images, r.defects_mapped,
+                        r.defects_in_world);
+    text += fmt::format("estimate_error: rms {:.3f} m, final {:.3f} m\n", r.position_error_rms_m,
+                        r.position_error_final_m);
+    text += fmt::format("nearest_wall: {:.2f} m\npath_length: {:.1f} m\nevents: {}\n",
+                        r.min_wall_distance_m, r.path_length_m, r.events);
+    text += fmt::format("wall_time: {:.1f} s\nreal_time_factor: {:.1f}x\n", r.wall_time_s,
+                        r.real_time_factor);
+    return text;
+}
+
+void run_exploration_mission(const MissionOptions& options, std::ostream& out) {
+    mission::ExplorationMissionScenario scenario =
+        mission::load_exploration_mission_scenario(options.scenario, options.overrides);
+    if (options.seed) scenario.simulation.seed = *options.seed;
+    if (options.num_threads != 0) scenario.simulation.parallel.num_threads = options.num_threads;
+    const mission::ExplorationMissionResult result =
+        run_interruptible(options, [&](const mission::MissionRunOptions& run_options) {
+            return mission::run_exploration_mission(scenario, options.out, run_options);
+        });
+    out << exploration_summary_text(scenario, result);
+}
+
 }  // namespace
 
 void run_mission(const MissionOptions& options, std::ostream& out) {
@@ -221,6 +261,9 @@ void run_mission(const MissionOptions& options, std::ostream& out) {
     if (mission::is_rov_mission_file(options.scenario)) return run_rov_mission(options, out);
     if (mission::is_crawler_mission_file(options.scenario)) {
         return run_crawler_mission(options, out);
+    }
+    if (mission::is_exploration_mission_file(options.scenario)) {
+        return run_exploration_mission(options, out);
     }
     mission::MissionScenario scenario =
         mission::load_mission_scenario(options.scenario, options.overrides);

@@ -36,7 +36,8 @@ const char* const kFrameFolderFiles[] = {
 const char* const kMissionFiles[] = {layout::kMissionEstimates, layout::kMissionEstimatesTum,
                                      layout::kMissionCommands,  layout::kMissionEvents,
                                      layout::kMissionPath,      layout::kMissionSummary,
-                                     layout::kMissionSonarMap};
+                                     layout::kMissionSonarMap,  layout::kMissionExplorationCurve,
+                                     layout::kMissionPlans,     layout::kMissionOccupancyMap};
 const char* const kTextureFiles[] = {"live.png", "clean.png", "metadata.json"};
 const char* const kWorldFiles[] = {"map.ply", "mesh.ply", "metadata.json",
                                    layout::kWorldMapDescriptorCache};

@@ -15,6 +15,7 @@
 #include <octomap/OcTree.h>
 
 #include <scantling/core/error.hpp>
+#include <scantling/core/random.hpp>
 #include <scantling/mapping/occupancy_octree.hpp>
 
 #include "../planning/expect_error.hpp"
@@ -119,7 +120,7 @@ Vector3d wall_scene_point(double x_right_m, double y_down_m, double depth_m) {
 
 TEST(OccupancyOctree, WallFrameMarksFrustumFreeWallOccupiedAndBehindUnknown) {
     OccupancyOctree map;
-    const InsertStats stats = map.insert_depth_frame(wall_frame(kWallM), kWallPose);
+    const DepthInsertStats stats = map.insert_depth_frame(wall_frame(kWallM), kWallPose);
     EXPECT_EQ(stats.points, 320u * 240u);
     EXPECT_EQ(stats.misses, 0u);
     for (const Vector3d& p :
@@ -154,7 +155,7 @@ TEST(OccupancyOctree, MissingReturnsClearFreeSpaceToMaxRangeOnly) {
     const std::size_t num_far = frame.size();
     for (int i = 0; i < 100; ++i) frame.points.push_back(Vector3d(kNaN, 0.0, 1.0));
     frame.points.push_back(Vector3d(0.0, std::numeric_limits<double>::infinity(), 1.0));
-    const InsertStats stats = map.insert_depth_frame(frame, kWallPose);
+    const DepthInsertStats stats = map.insert_depth_frame(frame, kWallPose);
     EXPECT_EQ(stats.points, num_far);
     EXPECT_EQ(stats.misses, num_far);
     EXPECT_EQ(stats.dropped_non_finite, 101u);
@@ -385,6 +386,117 @@ TEST(OccupancyOctree, VisibleUnknownVolumeRejectsBadViewsAndPoses) {
     SCANTLING_EXPECT_ERROR(map.visible_unknown_volume(bad_pose), InputError, "T_world_camera");
     bad_pose.translation().z() = 1e4;  // beyond the ±3.3 km map at 0.1 m
     SCANTLING_EXPECT_ERROR(map.visible_unknown_volume(bad_pose), InputError, "outside the map");
+}
+
+/// Ground truth for box_is_free: every voxel the closed box touches, queried at its centre.
+bool box_free_by_queries(const OccupancyOctree& map, const Eigen::AlignedBox3d& box) {
+    const double res = map.resolution_m();
+    const Eigen::Vector3d lo = (box.min() / res).array().floor();
+    const Eigen::Vector3d hi = (box.max() / res).array().floor();
+    for (double i = lo.x(); i <= hi.x(); ++i)
+        for (double j = lo.y(); j <= hi.y(); ++j)
+            for (double k = lo.z(); k <= hi.z(); ++k)
+                if (map.query((Vector3d(i, j, k) + Vector3d::Constant(0.5)) * res) !=
+                    Occupancy::kFree)
+                    return false;
+    return true;
+}
+
+TEST(OccupancyOctree, BoxIsFreeAgreesWithVoxelQueriesOnAnExploredRoom) {
+    const OccupancyOctree map = explored_room(0.1);
+    Rng rng(16);
+    int free_boxes = 0;
+    constexpr int kBoxes = 300;
+    for (int n = 0; n < kBoxes; ++n) {
+        const Vector3d centre(rng.uniform(-3.2, 3.2), rng.uniform(-2.2, 2.2),
+                              rng.uniform(-1.7, 1.7));
+        const Vector3d half(rng.uniform(0.02, 0.8), rng.uniform(0.02, 0.8), rng.uniform(0.02, 0.5));
+        const Eigen::AlignedBox3d box(centre - half, centre + half);
+        const bool truth = box_free_by_queries(map, box);
+        EXPECT_EQ(map.box_is_free(box), truth) << centre.transpose() << " ± " << half.transpose();
+        free_boxes += truth;
+    }
+    // Both outcomes are exercised (~ half the boxes touch a wall or leave the room).
+    EXPECT_GT(free_boxes, kBoxes / 5);
+    EXPECT_LT(free_boxes, kBoxes * 4 / 5);
+    // Edge cases: an empty box is free, an unknown map is not, the map's edge is not.
+    EXPECT_TRUE(map.box_is_free(Eigen::AlignedBox3d(Vector3d(1, 1, 1), Vector3d(0, 0, 0))));
+    EXPECT_FALSE(
+        OccupancyOctree().box_is_free(Eigen::AlignedBox3d(Vector3d::Zero(), Vector3d::Ones())));
+    EXPECT_FALSE(map.box_is_free(Eigen::AlignedBox3d(Vector3d::Zero(), Vector3d::Constant(1e4))));
+    SCANTLING_EXPECT_ERROR(
+        map.box_is_free(Eigen::AlignedBox3d(Vector3d::Constant(kNaN), Vector3d::Zero())),
+        InputError, "box_is_free");
+}
+
+TEST(OccupancyOctree, LineOfSightIsBlockedByOccupiedVoxelsOnly) {
+    OccupancyOctree map;
+    map.insert_depth_frame(wall_frame(kWallM), kWallPose);
+    const Vector3d camera = kWallPose.translation();
+    EXPECT_TRUE(map.line_of_sight(camera, wall_scene_point(0.2, 0.1, 2.0)));      // free space
+    EXPECT_TRUE(map.line_of_sight(camera, wall_scene_point(0.3, -0.2, kWallM)));  // on the wall
+    EXPECT_FALSE(map.line_of_sight(camera, wall_scene_point(0.3, -0.2, kWallM + 0.5)));  // behind
+    // Through unknown space (backwards, never seen): not blocked.
+    EXPECT_TRUE(map.line_of_sight(camera, wall_scene_point(0.0, 0.0, -3.0)));
+    SCANTLING_EXPECT_ERROR(map.line_of_sight(camera, Vector3d(kNaN, 0, 0)), InputError,
+                           "line_of_sight");
+}
+
+TEST(OccupancyOctree, FrontierPointsAreFreeAndBorderUnknownSpace) {
+    OccupancyOctree map;
+    map.insert_depth_frame(wall_frame(kWallM), kWallPose);
+    const Eigen::AlignedBox3d bounds(Vector3d(-6, -6, -6), Vector3d(6, 6, 6));
+    for (const int levels : {0, 1, 2}) {
+        const std::vector<Vector3d> points = map.frontier_points(bounds, levels);
+        ASSERT_FALSE(points.empty()) << levels;
+        const double cell_m = 0.1 * (1 << levels);
+        for (const Vector3d& p : points) {
+            // In a free voxel; with coarse cells in a free cell, which may hold unknown holes.
+            if (levels == 0) {
+                ASSERT_EQ(map.query(p), Occupancy::kFree) << p.transpose();
+            }
+            ASSERT_NE(map.query(p), Occupancy::kOccupied) << p.transpose();
+            ASSERT_TRUE(bounds.contains(p));
+            // The frustum's side faces border unknown space: some voxel within a cell and a
+            // half (the points stand for faces of merged leaves, so allow a few cells) is
+            // unknown.
+            bool unknown_near = false;
+            for (int a = 0; a < 3 && !unknown_near; ++a)
+                for (const double s : {-1.0, 1.0})
+                    for (double r = 0.1; r <= 8.0 * cell_m && !unknown_near; r += 0.1)
+                        unknown_near =
+                            map.query(p + s * r * Vector3d::Unit(a)) == Occupancy::kUnknown;
+            EXPECT_TRUE(unknown_near) << p.transpose();
+        }
+    }
+    // Coarser cells: fewer points. Bounds without free space: none. Bad input: errors.
+    EXPECT_LT(map.frontier_points(bounds, 2).size(), map.frontier_points(bounds, 0).size());
+    EXPECT_TRUE(map.frontier_points(Eigen::AlignedBox3d(Vector3d(-6, -6, -6), Vector3d(-5, -5, -5)))
+                    .empty());
+    SCANTLING_EXPECT_ERROR(map.frontier_points(bounds, 9), InputError, "coarse_levels");
+}
+
+TEST(OccupancyOctree, FrontierPointsOfAFullyExploredRoomAreNone) {
+    const OccupancyOctree map = explored_room(0.1);
+    // The room's inside (no voxel across a wall): every free cell borders free or occupied.
+    const Eigen::AlignedBox3d inside(kRoom.min() + Vector3d::Constant(0.1),
+                                     kRoom.max() - Vector3d::Constant(0.1));
+    EXPECT_TRUE(map.frontier_points(inside, 1).empty()) << map.frontier_points(inside, 1).size();
+}
+
+TEST(OccupancyOctree, BoundedVisibleUnknownVolumeCountsOnlyInsideTheBounds) {
+    const OccupancyOctree map;                                  // all unknown
+    const Eigen::Isometry3d T = Eigen::Isometry3d::Identity();  // looking along +x
+    const ViewFrustum view = narrow_view(2.0);
+    const VisibleVolume all = map.visible_unknown_volume(T, view);
+    const Eigen::AlignedBox3d near_half(Vector3d(-1, -5, -5), Vector3d(1.0, 5, 5));
+    const VisibleVolume near = map.visible_unknown_volume(T, view, near_half);
+    EXPECT_GT(near.unknown_m3, 0.0);
+    EXPECT_LT(near.unknown_m3, 0.5 * all.unknown_m3);  // the pyramid's first half holds 1/8
+    const Eigen::AlignedBox3d elsewhere(Vector3d(3, 3, 3), Vector3d(4, 4, 4));
+    EXPECT_EQ(map.visible_unknown_volume(T, view, elsewhere).unknown_m3, 0.0);
+    const Eigen::AlignedBox3d huge(Vector3d::Constant(-100), Vector3d::Constant(100));
+    EXPECT_EQ(map.visible_unknown_volume(T, view, huge).unknown_voxels, all.unknown_voxels);
 }
 
 TEST(OccupancyOctree, BinaryFileReadsBackWithOctoMapsOwnReader) {

@@ -35,7 +35,7 @@ TEST(BallastTankLarge, HasFiveLowerAndThreeUpperCompartmentsJoinedAsSpecified) {
     for (int k = 0; k < 5; ++k) {
         EXPECT_EQ(m.compartments[k].level, 0);
         EXPECT_NEAR(m.compartments[k].bounds.size().x(), 3.6, kExactTol_m);
-        EXPECT_NEAR(m.compartments[k].bounds.max.z(), 4.5, kExactTol_m);
+        EXPECT_NEAR(m.compartments[k].bounds.max.z(), 6.0, kExactTol_m);
     }
     for (int k = 5; k < 8; ++k) {
         EXPECT_EQ(m.compartments[k].level, 1);
@@ -89,10 +89,10 @@ TEST(BallastTankLarge, LevelTransitionsOpenTheDeck) {
         EXPECT_NEAR(up.point.z(), 9.0, kExactTol_m);
         const RayHit beside = caster.cast({x + 0.7, 1.0, 1.0}, Eigen::Vector3d::UnitZ(), 20.0);
         ASSERT_TRUE(beside.hit);
-        EXPECT_NEAR(beside.point.z(), 4.5 - kHalfPlate_m, kExactTol_m);
+        EXPECT_NEAR(beside.point.z(), 6.0 - kHalfPlate_m, kExactTol_m);
     }
     const RayHit middle = caster.cast({9.0, 1.0, 1.0}, Eigen::Vector3d::UnitZ(), 20.0);
-    EXPECT_NEAR(middle.point.z(), 4.5 - kHalfPlate_m, kExactTol_m);
+    EXPECT_NEAR(middle.point.z(), 6.0 - kHalfPlate_m, kExactTol_m);
     // Two faces of 18 x 2 m minus two 1.2 x 1.0 m openings, plus the openings' rims.
     const double rims = 2.0 * 2.0 * (1.2 + 1.0) * 2.0 * kHalfPlate_m;
     EXPECT_NEAR(testing::area_of(large(), "deck"), 2.0 * (36.0 - 2.0 * 1.2) + rims, kExactTol_m);
@@ -124,7 +124,9 @@ TEST(BallastTankLarge, LandmarksAndDefectsLieOnSurfaces) {
         EXPECT_LT(closest_point_on_mesh(large().mesh, l.position).distance_m, kOnSurfaceTol_m);
         ++checked;
     }
-    EXPECT_EQ(checked, (5 + 3) * 2 * 10);
+    // Per compartment and side: the longitudinals 0.75 m apart (7 in the 6 m lower level, 3 in
+    // the 3 m upper one) meet both of its end frames.
+    EXPECT_EQ(checked, (5 * 7 + 3 * 3) * 2 * 2);
     EXPECT_EQ(large().metadata.defects.size(), 8u);
     testing::expect_defects_on_surfaces(large(), kOnSurfaceTol_m);
 }

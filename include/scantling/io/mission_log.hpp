@@ -37,6 +37,11 @@ inline constexpr const char* kMissionPath = "intended_path.csv";
 inline constexpr const char* kMissionSummary = "summary.json";
 /// The ROV's sonar inspection map (mission/rov_mission.hpp): one voxel per line.
 inline constexpr const char* kMissionSonarMap = "sonar_map.csv";
+/// The exploration's figures (mission/exploration_mission.hpp): the explored-volume curve, one
+/// line per planning iteration, and the occupancy map (OctoMap's binary .bt).
+inline constexpr const char* kMissionExplorationCurve = "exploration.csv";
+inline constexpr const char* kMissionPlans = "plans.csv";
+inline constexpr const char* kMissionOccupancyMap = "map.bt";
 /// The crawler's texture map (perception/texture_map.hpp): live.png, clean.png, metadata.json.
 inline constexpr const char* kMissionTextureDir = "texture";
 inline constexpr const char* kMissionEstimatesHeader =

@@ -17,6 +17,7 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <scantling/core/point_cloud.hpp>
 
@@ -61,7 +62,7 @@ enum class Occupancy {
 
 /// What one insert_depth_frame did: points = inserted rays (misses included), plus
 /// dropped_non_finite = the frame's size.
-struct InsertStats {
+struct DepthInsertStats {
     std::size_t points = 0;              ///< finite points cast as rays
     std::size_t misses = 0;              ///< of those, farther than max_range_m: free space only
     std::size_t dropped_non_finite = 0;  ///< NaN / infinite points (no return), skipped
@@ -112,8 +113,8 @@ class OccupancyOctree {
     /// Throws InputError for a non-finite pose, or a sensor closer than max_range_m to the
     /// map's edge (±32768 · resolution_m). Cost: O(points · max_range_m / resolution_m · 16),
     /// less with discretize (see the config).
-    InsertStats insert_depth_frame(const PointCloud& points_sensor,
-                                   const Eigen::Isometry3d& T_world_sensor);
+    DepthInsertStats insert_depth_frame(const PointCloud& points_sensor,
+                                        const Eigen::Isometry3d& T_world_sensor);
 
     /// The state of the voxel holding `p_world` (kUnknown outside the map). O(16). Throws
     /// InputError for a non-finite point.
@@ -148,6 +149,52 @@ class OccupancyOctree {
     /// Cost: O(rays · max_depth_m / resolution_m · 16).
     VisibleVolume visible_unknown_volume(const Eigen::Isometry3d& T_world_camera,
                                          const ViewFrustum& view = {}) const;
+
+    /// visible_unknown_volume with every ray also clipped to `bounds_world` (an exploration
+    /// volume): only unknown voxels the rays reach inside it count, so unknown space beyond the
+    /// region to explore (outside a tank, past an open side) adds no gain. A camera outside
+    /// `bounds_world` sees nothing (0). Throws as the overload above, and InputError for a
+    /// non-finite box. Cost: as above.
+    VisibleVolume visible_unknown_volume(const Eigen::Isometry3d& T_world_camera,
+                                         const ViewFrustum& view,
+                                         const Eigen::AlignedBox3d& bounds_world) const;
+
+    /// True when every voxel the closed box touches is known free (none occupied, none
+    /// unknown): a collision check for a vehicle's bounding box that is conservative at the
+    /// voxel level. An empty box is free; a box reaching outside the map is not. Throws
+    /// InputError for a non-finite box. Cost: O(leaves intersecting the box · 16), walking
+    /// OctoMap's merged leaves (a big free leaf counts once), not O(voxels).
+    bool box_is_free(const Eigen::AlignedBox3d& box_world) const;
+
+    /// True when no voxel on the segment from `from_world` to `to_world` is occupied, the
+    /// voxel holding `to_world` excluded (a target on a surface is seen, not blocked by its
+    /// own voxel); unknown voxels do not block. False when the segment leaves the map.
+    /// Throws InputError for a non-finite point. Cost: O(length / resolution_m · 16).
+    bool line_of_sight(const Eigen::Vector3d& from_world, const Eigen::Vector3d& to_world) const;
+
+    /// Frontiers inside `bounds_world` (free space next to unknown space, SPEC §8), on the
+    /// tree cut to cells of 2^coarse_levels voxels (0: voxels; 2 at 0.05 m: 0.2 m cells). A
+    /// cell is free when it holds known voxels, none occupied (unknown holes allowed); a face
+    /// is a frontier when some cell just across it holds no known voxel at all, so holes
+    /// smaller than a cell between sparse rays are not frontiers. For each free cell (or
+    /// larger merged leaf) and each of its 6 faces that is a frontier (the voxel layer across
+    /// it centred inside `bounds_world`), one point: the middle of its boundary layer of voxels
+    /// on that face (for a merged leaf the point stands for the whole face). A point is never in
+    /// an occupied voxel; it is in a known free voxel when coarse_levels = 0 (with coarse cells
+    /// it may fall on an unknown hole of its free cell). Ordered by
+    /// OctoMap's leaf order: deterministic. Throws InputError for a non-finite box or
+    /// coarse_levels outside [0, 8]. Cost: O(free cells in the box · 6 · 16) plus the descent
+    /// into faces whose neighbour is split finer (down to cells).
+    std::vector<Eigen::Vector3d> frontier_points(const Eigen::AlignedBox3d& bounds_world,
+                                                 int coarse_levels = 0) const;
+
+    /// Sets every unknown voxel the closed box touches free (one miss each: P = prob_miss),
+    /// leaving known voxels as they are; returns how many it set. Why: the space a vehicle
+    /// occupies is free whatever its sensors saw there (a forward camera never sees below or
+    /// behind its own vehicle), so the planner's start box can pass box_is_free. An empty box
+    /// sets nothing. Throws InputError for a non-finite box or one beyond the map's extent.
+    /// Cost: O(voxels in the box · 16).
+    std::size_t mark_free(const Eigen::AlignedBox3d& box_world);
 
     /// Number of leaves of the tree (known voxels, merged where 8 siblings agree).
     std::size_t num_leaves() const;

@@ -28,6 +28,7 @@
 #include <scantling/io/config_node.hpp>
 #include <scantling/io/config_schema.hpp>
 #include <scantling/planning/circular_inspection.hpp>
+#include <scantling/planning/nbv_planner.hpp>
 #include <scantling/planning/recorded_points.hpp>
 #include <scantling/planning/sweep_mission.hpp>
 #include <scantling/planning/vertical_inspection.hpp>
@@ -42,6 +43,9 @@ const io::ConfigSchema<SweepConfig>& sweep_config_schema();
 const io::ConfigSchema<VerticalInspectionConfig>& vertical_inspection_config_schema();
 const io::ConfigSchema<CircularInspectionConfig>& circular_inspection_config_schema();
 const io::ConfigSchema<GoToConfig>& go_to_config_schema();
+/// The exploration planner's settings (a mission's `stack.nbv:`), with its `camera:` and
+/// `parallel:` sections; `sampling` is `uniform` or `frontier`. Defined in nbv_config_yaml.cpp.
+const io::ConfigSchema<NbvPlannerConfig>& nbv_planner_config_schema();
 
 /// What a request may refer to besides its own keys.
 struct MissionContext {

@@ -153,7 +153,9 @@ struct BallastTankLargeConfig {
     double length_m = 18.0;
     double width_m = 2.0;
     double height_m = 9.0;
-    double level_height_m = 4.5;
+    /// The deck's height: the upper level is 3 m tall (RESULTS-TO-REPRODUCE §4.6, thesis art. G's
+    /// tank; the lower level 6 m).
+    double level_height_m = 6.0;
     int lower_compartments = 5;  ///< 18 m / 5 = 3.6 m each (SPEC: "5 compartments of 3.5 m")
     int upper_compartments = 3;
     double plate_thickness_m = 0.01;
