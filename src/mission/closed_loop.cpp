@@ -117,10 +117,7 @@ MissionResult run_mission(const MissionScenario& scenario, const std::string& di
     sim::Scenario simulation = scenario.simulation;
     sim::Simulator sim(simulation, scenario.T_world_body_start());
     sim::RecordingWriter writer(directory, options.overwrite);
-    if (simulation.export_world.world) {
-        writer.write_world(sim.world(), {.map_spacing_m = simulation.export_world.map_spacing_m,
-                                         .seed = Rng(simulation.seed).split(100).next_u64()});
-    }
+    detail::write_world_if_exported(writer, simulation, sim);
     DroneStackConfig stack_config = scenario.stack;
     // LiODOM parallelises its extraction and registration with results independent of the
     // thread count (odometry/liodom.hpp); the loop itself stays sequential.
@@ -197,9 +194,7 @@ MissionResult run_mission(const MissionScenario& scenario, const std::string& di
     result.sim_time_s = sim.now_s();
     result.events = files.num_events;
     writer.finish(recording_summary(scenario.name, scenario.description, scenario.simulation, sim));
-    result.wall_time_s =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-    result.real_time_factor = result.sim_time_s / std::max(result.wall_time_s, 1e-9);
+    detail::stamp_wall_time(result, wall_start);
     write_mission_files(writer, files, scenario.path, detail::summary_json(scenario, result));
     writer.write_timing(result.wall_time_s, result.real_time_factor);
     writer.commit();

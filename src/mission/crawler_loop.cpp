@@ -397,9 +397,7 @@ CrawlerMissionResult run_crawler_mission(const CrawlerMissionScenario& scenario,
     result.directory = directory;
     result.sim_time_s = sim.now_s();
     result.events = files.num_events;
-    result.wall_time_s =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-    result.real_time_factor = result.sim_time_s / std::max(result.wall_time_s, 1e-9);
+    detail::stamp_wall_time(result, wall_start);
     writer.finish(detail::recording_summary(scenario.name, scenario.description, simulation, sim));
     detail::write_mission_files(writer, files, intended_waypoints(stack),
                                 summary_json(scenario, result));

@@ -38,15 +38,6 @@ struct TextureDocument {
     sim::PoseSpec map_pose{};
 };
 
-struct CrawlerDocument {
-    std::string name;
-    std::string description;
-    sim::PoseSpec start{};
-    double linger_s = 1.0;
-    CrawlerStackConfig stack{};
-    std::vector<SensorFault> faults;
-};
-
 const io::ConfigSchema<TextureDocument>& texture_schema() {
     using S = TextureDocument;
     static const io::ConfigSchema<S> schema = [] {
@@ -291,18 +282,8 @@ const io::ConfigSchema<CrawlerStackConfig>& stack_schema() {
     return schema;
 }
 
-const io::ConfigSchema<CrawlerDocument>& document_schema() {
-    using S = CrawlerDocument;
-    static const io::ConfigSchema<S> schema = [] {
-        io::ConfigSchema<S> s;
-        s.field("name", &S::name, "default: the file's stem")
-            .field("description", &S::description)
-            .section("start", &S::start, sim::detail::pose_spec_schema(), "start pose, world")
-            .field("linger_s", &S::linger_s, "simulated after the end, s", io::kNonNegative)
-            .section("stack", &S::stack, stack_schema())
-            .list("faults", &S::faults, detail::fault_schema());
-        return s;
-    }();
+const io::ConfigSchema<detail::VehicleDocument<CrawlerStackConfig>>& document_schema() {
+    static const auto schema = detail::vehicle_document_schema(stack_schema());
     return schema;
 }
 
@@ -334,7 +315,7 @@ void calibrate(CrawlerMissionScenario& m) {
 
 CrawlerMissionScenario from_document(const io::ConfigNode& root, const std::string& name) {
     if (!root.is_map()) io::detail::fail(root, "", "expected a map (a mission scenario)");
-    CrawlerDocument document;
+    detail::VehicleDocument<CrawlerStackConfig> document;
     document_schema().apply(without(root, {"simulation", "mission", "operator", "texture_map"}),
                             document);
     if (const io::ConfigNode* texture = root.find("texture_map")) {

@@ -156,10 +156,7 @@ ExplorationMissionResult run_exploration_mission(const ExplorationMissionScenari
     sim::Simulator sim(simulation, scenario.T_world_body_start());
     detail::ReachableVolume reachable = reachable_of(scenario, sim);
     sim::RecordingWriter writer(directory, options.overwrite);
-    if (simulation.export_world.world) {
-        writer.write_world(sim.world(), {.map_spacing_m = simulation.export_world.map_spacing_m,
-                                         .seed = Rng(simulation.seed).split(100).next_u64()});
-    }
+    detail::write_world_if_exported(writer, simulation, sim);
     ExplorationStack stack(scenario.stack, scenario.T_world_body_start(), 0.0);
     detail::ExplorationFigures figures(scenario, std::move(reachable));
     control::OperatorScript script(scenario.operator_script);
@@ -218,9 +215,7 @@ ExplorationMissionResult run_exploration_mission(const ExplorationMissionScenari
     result.directory = directory;
     result.sim_time_s = sim.now_s();
     result.events = files.num_events;
-    result.wall_time_s =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-    result.real_time_factor = result.sim_time_s / std::max(result.wall_time_s, 1e-9);
+    detail::stamp_wall_time(result, wall_start);
     write_recording(writer, scenario, sim, stack, files, result);
     return result;
 }

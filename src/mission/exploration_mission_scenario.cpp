@@ -37,17 +37,6 @@ struct ExploreMission {
     double volume_every_s = 10.0;
 };
 
-/// What the table-driven schema reads; `simulation`, `mission` and `operator` are read by
-/// their own readers.
-struct ExplorationDocument {
-    std::string name;
-    std::string description;
-    sim::PoseSpec start{};
-    double linger_s = 1.0;
-    ExplorationStackConfig stack{};
-    std::vector<SensorFault> faults;
-};
-
 const io::ConfigSchema<mapping::OccupancyOctreeConfig>& map_schema() {
     using S = mapping::OccupancyOctreeConfig;
     static const io::ConfigSchema<S> schema = [] {
@@ -105,18 +94,8 @@ const io::ConfigSchema<ExplorationStackConfig>& stack_schema() {
     return schema;
 }
 
-const io::ConfigSchema<ExplorationDocument>& document_schema() {
-    using S = ExplorationDocument;
-    static const io::ConfigSchema<S> schema = [] {
-        io::ConfigSchema<S> s;
-        s.field("name", &S::name, "default: the file's stem")
-            .field("description", &S::description)
-            .section("start", &S::start, sim::detail::pose_spec_schema(), "start pose, world")
-            .field("linger_s", &S::linger_s, "simulated after the end, s", io::kNonNegative)
-            .section("stack", &S::stack, stack_schema())
-            .list("faults", &S::faults, detail::fault_schema());
-        return s;
-    }();
+const io::ConfigSchema<detail::VehicleDocument<ExplorationStackConfig>>& document_schema() {
+    static const auto schema = detail::vehicle_document_schema(stack_schema());
     return schema;
 }
 
@@ -176,7 +155,7 @@ void calibrate(ExplorationMissionScenario& m) {
 
 ExplorationMissionScenario from_document(const io::ConfigNode& root, const std::string& name) {
     if (!root.is_map()) io::detail::fail(root, "", "expected a map (a mission scenario)");
-    ExplorationDocument document;
+    detail::VehicleDocument<ExplorationStackConfig> document;
     document_schema().apply(without(root, {"simulation", "mission", "operator"}), document);
     ExploreMission mission;
     const io::ConfigNode& mission_node = required(root, "mission");

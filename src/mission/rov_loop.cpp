@@ -175,10 +175,7 @@ RovMissionResult run_rov_mission(const RovMissionScenario& scenario, const std::
     const sim::Scenario& simulation = scenario.simulation;
     sim::Simulator sim(simulation, scenario.T_world_body_start());
     sim::RecordingWriter writer(directory, options.overwrite);
-    if (simulation.export_world.world) {
-        writer.write_world(sim.world(), {.map_spacing_m = simulation.export_world.map_spacing_m,
-                                         .seed = Rng(simulation.seed).split(100).next_u64()});
-    }
+    detail::write_world_if_exported(writer, simulation, sim);
     const planning::WaypointPath survey = planning::hull_survey_in_world(
         planning::plan_hull_survey(scenario.flown_plan()), scenario.T_world_flown_hull());
     CoverageSpec section;
@@ -251,9 +248,7 @@ RovMissionResult run_rov_mission(const RovMissionScenario& scenario, const std::
     result.directory = directory;
     result.sim_time_s = sim.now_s();
     result.events = files.num_events;
-    result.wall_time_s =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-    result.real_time_factor = result.sim_time_s / std::max(result.wall_time_s, 1e-9);
+    detail::stamp_wall_time(result, wall_start);
     write_recording(writer, scenario, sim, stack, files, survey, result);
     return result;
 }

@@ -33,17 +33,6 @@ struct HullSurveyMission {
     double margin_m = 0.1;
 };
 
-/// What the table-driven schema reads; `simulation`, `mission`, `operator` and `coverage` are
-/// read by their own readers.
-struct RovDocument {
-    std::string name;
-    std::string description;
-    sim::PoseSpec start{};
-    double linger_s = 1.0;
-    RovStackConfig stack{};
-    std::vector<SensorFault> faults;
-};
-
 const io::ConfigSchema<control::RovGuidanceConfig>& guidance_schema() {
     using S = control::RovGuidanceConfig;
     static const io::ConfigSchema<S> schema = [] {
@@ -119,18 +108,8 @@ const io::ConfigSchema<RovStackConfig>& stack_schema() {
     return schema;
 }
 
-const io::ConfigSchema<RovDocument>& document_schema() {
-    using S = RovDocument;
-    static const io::ConfigSchema<S> schema = [] {
-        io::ConfigSchema<S> s;
-        s.field("name", &S::name, "default: the file's stem")
-            .field("description", &S::description)
-            .section("start", &S::start, sim::detail::pose_spec_schema(), "start pose, world")
-            .field("linger_s", &S::linger_s, "simulated after the end, s", io::kNonNegative)
-            .section("stack", &S::stack, stack_schema())
-            .list("faults", &S::faults, detail::fault_schema());
-        return s;
-    }();
+const io::ConfigSchema<detail::VehicleDocument<RovStackConfig>>& document_schema() {
+    static const auto schema = detail::vehicle_document_schema(stack_schema());
     return schema;
 }
 
@@ -215,7 +194,7 @@ void calibrate(RovMissionScenario& m) {
 
 RovMissionScenario from_document(const io::ConfigNode& root, const std::string& name) {
     if (!root.is_map()) io::detail::fail(root, "", "expected a map (a mission scenario)");
-    RovDocument document;
+    detail::VehicleDocument<RovStackConfig> document;
     document_schema().apply(without(root, {"simulation", "mission", "operator", "coverage"}),
                             document);
     HullSurveyMission mission;

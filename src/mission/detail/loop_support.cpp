@@ -9,6 +9,7 @@
 
 #include <scantling/sim/scenario_runner.hpp>
 
+#include <scantling/core/random.hpp>
 #include <scantling/io/atomic_file.hpp>
 #include <scantling/io/tum.hpp>
 
@@ -132,6 +133,13 @@ void write_mission_files(const sim::RecordingWriter& writer, const MissionFiles&
     write_text(file(layout::kMissionEvents), files.events);
     write_text(file(layout::kMissionPath), io::intended_path_csv(path_records(path)));
     write_text(file(layout::kMissionSummary), summary);
+}
+
+void write_world_if_exported(sim::RecordingWriter& writer, const sim::Scenario& simulation,
+                             const sim::Simulator& sim) {
+    if (!simulation.export_world.world) return;
+    writer.write_world(sim.world(), {.map_spacing_m = simulation.export_world.map_spacing_m,
+                                     .seed = Rng(simulation.seed).split(100).next_u64()});
 }
 
 }  // namespace scantling::mission::detail

@@ -1,7 +1,8 @@
 #pragma once
-// What the vehicles' closed loops share (closed_loop.cpp, rov_loop.cpp): the stage clock, the
-// mission files besides the simulator's streams, and the logging of operator commands and
-// injected faults.
+// What the vehicles' closed loops share (closed_loop.cpp, rov_loop.cpp, crawler_loop.cpp,
+// exploration_loop.cpp): the stage clock, the mission files besides the simulator's streams,
+// the logging of operator commands and injected faults, the world's export and the wall time.
+#include <algorithm>
 #include <chrono>
 #include <cstddef>
 #include <span>
@@ -94,6 +95,18 @@ void log_operator(MissionFiles& files, std::span<const control::OperatorCommand>
 void log_faults(MissionFiles& files, FaultInjector& faults, double t_s);
 
 std::vector<sim::SensorType> sensor_types(const sim::Scenario& simulation);
+
+/// DIR/world/ (the world's map, mesh and metadata) when the scenario exports it.
+void write_world_if_exported(sim::RecordingWriter& writer, const sim::Scenario& simulation,
+                             const sim::Simulator& sim);
+
+/// The result's wall time since `wall_start` and its real-time factor over `sim_time_s`.
+template <class Result>
+void stamp_wall_time(Result& result, std::chrono::steady_clock::time_point wall_start) {
+    result.wall_time_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+    result.real_time_factor = result.sim_time_s / std::max(result.wall_time_s, 1e-9);
+}
 
 /// summary.json's scenario block of the recording.
 sim::RecordingSummary recording_summary(const std::string& name, const std::string& description,

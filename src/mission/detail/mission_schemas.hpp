@@ -1,9 +1,14 @@
 #pragma once
-// YAML schemas both mission readers use (mission_scenario.cpp for the drone, rov_mission_scenario
-// .cpp for the ROV), written once.
+// YAML schemas the mission readers share (mission_scenario.cpp for the drone, and the ROV's,
+// the crawler's and the exploring drone's readers), written once.
+#include <string>
+#include <vector>
+
 #include <scantling/io/config_schema.hpp>
 #include <scantling/mission/fault_injection.hpp>
 #include <scantling/perception/camera_coverage.hpp>
+#include <scantling/sim/scenario.hpp>
+#include <scantling/sim/scenario_schema.hpp>
 
 namespace scantling::mission::detail {
 
@@ -13,5 +18,33 @@ const io::ConfigSchema<SensorFault>& fault_schema();
 /// The grid and view limits of a camera coverage (perception/camera_coverage.hpp): the drone's
 /// `coverage:` figure and the ROV stack's believed coverage. Defined in coverage_spec.cpp.
 const io::ConfigSchema<perception::CameraCoverageConfig>& camera_coverage_config_schema();
+
+/// What the table-driven schema reads of a vehicle's mission document (the ROV's, the
+/// crawler's, the exploring drone's): the keys they share and the vehicle's stack.
+/// `simulation`, `mission`, `operator` and a vehicle's own sections have their own readers.
+template <class Stack>
+struct VehicleDocument {
+    std::string name;
+    std::string description;
+    sim::PoseSpec start{};
+    double linger_s = 1.0;
+    Stack stack{};
+    std::vector<SensorFault> faults;
+};
+
+/// The schema of VehicleDocument<Stack>, with `stack:` read by `stack_schema`.
+template <class Stack>
+io::ConfigSchema<VehicleDocument<Stack>> vehicle_document_schema(
+    const io::ConfigSchema<Stack>& stack_schema) {
+    using S = VehicleDocument<Stack>;
+    io::ConfigSchema<S> s;
+    s.field("name", &S::name, "default: the file's stem")
+        .field("description", &S::description)
+        .section("start", &S::start, sim::detail::pose_spec_schema(), "start pose, world")
+        .field("linger_s", &S::linger_s, "simulated after the end, s", io::kNonNegative)
+        .section("stack", &S::stack, stack_schema)
+        .list("faults", &S::faults, fault_schema());
+    return s;
+}
 
 }  // namespace scantling::mission::detail
