@@ -157,12 +157,13 @@ void ExplorationStack::hold(double t_s, ExplorationCommand& out) {
 }
 
 void ExplorationStack::steer(const Eigen::Vector3d& target, std::optional<double> yaw, double t_s,
-                             ExplorationCommand& out) {
+                             ExplorationCommand& out, double horizontal_scale) {
     const Eigen::Isometry3d T = T_world_body_estimate();
     const control::VelocityCommand c =
         controller_.update(T.translation(), yaw_of(T), target, yaw, step_s(last_command_s_, t_s));
     out.v_requested_world_mps = c.v_cmd_world_mps;
-    out.v_world_mps = safe_velocity(c.v_cmd_world_mps, out);
+    out.v_requested_world_mps.head<2>() *= horizontal_scale;
+    out.v_world_mps = safe_velocity(out.v_requested_world_mps, out);
     out.yaw_rate_radps = c.yaw_rate_cmd_radps;
 }
 
@@ -237,10 +238,20 @@ void ExplorationStack::explore(double t_s, ExplorationCommand& out) {
 }
 
 void ExplorationStack::fly_to_goal(double t_s, ExplorationCommand& out) {
-    const Eigen::Vector3d p = T_world_body_estimate().translation();
+    const Eigen::Isometry3d T = T_world_body_estimate();
     const control::VtpResult vtp = control::virtual_target_point(
-        p, leg_start_world_m_, *goal_world_m_, config_.goal_tolerance_m, config_.vtp);
-    steer(vtp.vtp_world_m, goal_yaw_rad_, t_s, out);
+        T.translation(), leg_start_world_m_, *goal_world_m_, config_.goal_tolerance_m, config_.vtp);
+    const Eigen::Vector2d ahead = (*goal_world_m_ - T.translation()).head<2>();
+    if (ahead.norm() <= config_.goal_tolerance_m)
+        return steer(vtp.vtp_world_m, goal_yaw_rad_, t_s, out);
+    // Face the way first, then fly: the camera, and so the collision prevention, sees only
+    // ahead. Sideways along an edge the drone flew into space its camera had not seen for
+    // seconds (seed 2: through the side shell, on an estimate 0.65 m off). The node's own
+    // heading is taken at the goal.
+    const double travel_yaw = std::atan2(ahead.y(), ahead.x());
+    const double error = std::abs(wrap(travel_yaw - yaw_of(T)));
+    const double scale = error > config_.max_travel_heading_error_rad ? 0.0 : std::cos(error);
+    steer(vtp.vtp_world_m, travel_yaw, t_s, out, scale);
 }
 
 std::vector<Eigen::Vector3d> ExplorationStack::interest_points() const {

@@ -72,6 +72,8 @@ const io::ConfigSchema<ExplorationStackConfig>& stack_schema() {
             .section("collision", &S::collision, safety::collision_prevention_schema())
             .field("obstacle_memory_s", &S::obstacle_memory_s, "depth frames kept, s",
                    io::kPositive)
+            .field("max_travel_heading_error_rad", &S::max_travel_heading_error_rad,
+                   "turn in place first beyond, rad", io::kPositive)
             .field("takeoff_height_m", &S::takeoff_height_m, "m", io::kPositive)
             .field("max_speed_mps", &S::max_speed_mps, "v_max, m/s", io::kPositive)
             .field("max_yaw_rate_radps", &S::max_yaw_rate_radps, "rad/s", io::kPositive)

@@ -71,6 +71,11 @@ void ExplorationStackConfig::validate(std::string_view prefix) const {
     require_positive(goal_timeout_s, prefix, "goal_timeout_s");
     require_positive(max_depth_age_s, prefix, "max_depth_age_s");
     require_positive(obstacle_memory_s, prefix, "obstacle_memory_s");
+    if (!(max_travel_heading_error_rad > 0.0 &&
+          max_travel_heading_error_rad <= 1.5707963267948966)) {
+        throw ConfigError(fmt::format("{}.max_travel_heading_error_rad = {}, expected in (0, pi/2]",
+                                      prefix, max_travel_heading_error_rad));
+    }
     collision.validate(fmt::format("{}.collision", prefix));
     require_positive(depth_lost_abort_s, prefix, "depth_lost_abort_s");
     if (max_nodes_when_exhausted < nbv.max_nodes) {

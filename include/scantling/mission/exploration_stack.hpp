@@ -22,9 +22,10 @@
 ///   survey    → a full turn in place, so that the map holds the space around the vehicle;
 ///   explore   → at each goal reached (or none yet): the vehicle's own box is marked free (it
 ///                occupies it), the next-best-view planner grows its tree from the estimate,
-///                and the first node of the best branch becomes the goal; the vehicle flies the
-///                straight edge to it (VTP follower on the edge, position PIDs limited to
-///                max_speed_mps, yaw towards the node's at max_yaw_rate_radps);
+///                and the first node of the best branch becomes the goal; the vehicle turns to
+///                face along the straight edge, flies it (VTP follower on the edge, position
+///                PIDs limited to max_speed_mps) and turns to the node's yaw at the goal, at
+///                max_yaw_rate_radps;
 ///   done      → the planner found no gain left (or a start not in free space twice in a
 ///                row): hover; the mission is completed.
 /// The operator's commands: pause (and go_home: the way home is the operator's) hover where
@@ -123,6 +124,9 @@ struct ExplorationStackConfig {
     safety::CollisionPreventionConfig collision{
         .d_att_m = 1.0, .d_min_m = 0.45, .robot_radius_m = 0.35, .repulsion_gain_per_s = 1.0};
     double obstacle_memory_s = 3.0;  ///< > 0
+    /// An edge is flown facing along it: farther off this heading, rad, in (0, π/2], the
+    /// vehicle turns in place first (closer, its horizontal speed is scaled by the cosine).
+    double max_travel_heading_error_rad = 0.5;
     /// No plan without a depth frame younger than this, s, > 0: the map would not see what the
     /// next edge flies into (the vehicle hovers, `sensor_lost`).
     double max_depth_age_s = 1.0;
@@ -229,8 +233,9 @@ class ExplorationStack {
     std::vector<Eigen::Vector3d> interest_points() const;
     void fly_to_goal(double t_s, ExplorationCommand& out);
     void hold(double t_s, ExplorationCommand& out);
+    /// `horizontal_scale` multiplies the controller's horizontal velocity (0 turns in place).
     void steer(const Eigen::Vector3d& target, std::optional<double> yaw, double t_s,
-               ExplorationCommand& out);
+               ExplorationCommand& out, double horizontal_scale = 1.0);
     /// The velocity after collision prevention on the recent depth frames.
     Eigen::Vector3d safe_velocity(const Eigen::Vector3d& v_world_mps,
                                   ExplorationCommand& out) const;
