@@ -128,7 +128,8 @@ ExplorationCommand ExplorationStack::command(
     if (state_ == MissionState::kRunning) {
         guide(t_s, out);
     } else if (state_ == MissionState::kOperator) {
-        out.v_world_mps = operator_velocity_;
+        out.v_requested_world_mps = operator_velocity_;  // under the collision prevention too
+        out.v_world_mps = safe_velocity(operator_velocity_, out);
     } else {
         hold(t_s, out);
     }

@@ -221,5 +221,54 @@ TEST_F(ExplorationMission, AStartInsideTheWallIsRefusedBeforeAnythingIsWritten) 
     EXPECT_FALSE(fs::exists(dir));
 }
 
+TEST(ExplorationStack, TheOperatorStartsPausesTakesOverAndAbortsIt) {
+    using control::MissionState;
+    using control::OperatorCommand;
+    using control::OperatorCommandType;
+    ExplorationStack stack({}, Eigen::Isometry3d::Identity());
+    const auto send = [&](double t_s, OperatorCommandType type,
+                          const Eigen::Vector3d& v = Eigen::Vector3d::Zero()) {
+        const std::vector<OperatorCommand> commands{{.type = type, .v_world_mps = v}};
+        return stack.command(t_s, commands);
+    };
+    EXPECT_EQ(stack.command(0.0, {}).state, MissionState::kIdle);
+    ExplorationCommand c = send(0.01, OperatorCommandType::kStart);
+    EXPECT_EQ(c.state, MissionState::kRunning);
+    EXPECT_GT(c.v_world_mps.z(), 0.0);  // taking off
+    EXPECT_EQ(stack.phase(), ExplorationPhase::kTakeOff);
+    c = send(0.02, OperatorCommandType::kPause);
+    EXPECT_EQ(c.state, MissionState::kPaused);
+    EXPECT_NE(c.events.front().json.find(R"("to":"paused")"), std::string::npos);
+    c = send(0.03, OperatorCommandType::kTakeOver, Eigen::Vector3d(0.2, 0.0, 0.0));
+    EXPECT_EQ(c.state, MissionState::kOperator);
+    EXPECT_NEAR(c.v_world_mps.x(), 0.2, 1e-12);  // no depth frame: nothing to avoid
+    c = send(0.04, OperatorCommandType::kHandBack);
+    EXPECT_EQ(c.state, MissionState::kRunning);
+    c = send(0.05, OperatorCommandType::kAbort);
+    EXPECT_EQ(c.state, MissionState::kAborted);
+    EXPECT_EQ(send(0.06, OperatorCommandType::kResume).state, MissionState::kAborted);
+}
+
+TEST(ExplorationStack, RejectsNonFiniteSamplesWithOneEventPerEpisode) {
+    ExplorationStack stack({}, Eigen::Isometry3d::Identity());
+    io::ImuRecord bad;
+    bad.stamp_s = 0.01;
+    bad.specific_force_mps2 = Eigen::Vector3d(std::nan(""), 0.0, 9.81);
+    stack.add_imu(bad);
+    bad.stamp_s = 0.02;
+    stack.add_imu(bad);
+    stack.add_barometer({.stamp_s = std::nan(""), .altitude_m = 1.0});
+    const ExplorationCommand c = stack.command(0.03, {});
+    EXPECT_EQ(stack.inputs_rejected(), 3u);
+    ASSERT_EQ(c.events.size(), 2u);  // imu once, barometer once
+    EXPECT_EQ(c.events[0].type, "input_rejected");
+    EXPECT_NE(c.events[0].json.find("imu"), std::string::npos);
+    EXPECT_THROW(ExplorationStack({}, Eigen::Isometry3d(Eigen::Translation3d(std::nan(""), 0, 0))),
+                 InputError);
+    ExplorationStackConfig bad_config;
+    bad_config.max_speed_mps = 0.0;
+    EXPECT_THROW(ExplorationStack(bad_config, Eigen::Isometry3d::Identity()), ConfigError);
+}
+
 }  // namespace
 }  // namespace scantling::mission
