@@ -326,18 +326,9 @@ CrawlerMissionScenario from_document(const io::ConfigNode& root, const std::stri
     const detail::CrawlerMissionDocument mission =
         detail::crawler_mission_from(required(root, "mission"));
     CrawlerMissionScenario m;
-    m.name = document.name.empty() ? std::filesystem::path(name).stem().string() : document.name;
-    m.description = document.description;
-    m.simulation = sim::scenario_from_node(required(root, "simulation"), "simulation");
-    m.start = document.start;
-    m.linger_s = document.linger_s;
+    detail::take_common(m, document, root, required(root, "simulation"), name);
     m.tasks = mission.tasks;
     m.swath_width_m = mission.swath_width_m;
-    m.stack = document.stack;
-    m.faults = document.faults;
-    if (const io::ConfigNode* script = root.find("operator")) {
-        m.operator_script = control::operator_script_from_yaml(*script, "operator").commands();
-    }
     calibrate(m);
     m.validate();
     return m;

@@ -167,19 +167,10 @@ ExplorationMissionScenario from_document(const io::ConfigNode& root, const std::
                          fmt::format("'{}', expected explore", mission.type));
     }
     ExplorationMissionScenario m;
-    m.name = document.name.empty() ? std::filesystem::path(name).stem().string() : document.name;
-    m.description = document.description;
-    m.simulation = sim::scenario_from_node(required(root, "simulation"), "simulation");
-    m.start = document.start;
-    m.linger_s = document.linger_s;
+    detail::take_common(m, document, root, required(root, "simulation"), name);
     m.bounds_world = Eigen::AlignedBox3d(mission.bounds.min, mission.bounds.max);
     m.record_depth_every = mission.record_depth_every;
     m.volume_every_s = mission.volume_every_s;
-    m.stack = document.stack;
-    m.faults = document.faults;
-    if (const io::ConfigNode* script = root.find("operator")) {
-        m.operator_script = control::operator_script_from_yaml(*script, "operator").commands();
-    }
     calibrate(m);
     m.validate();
     return m;

@@ -206,20 +206,11 @@ RovMissionScenario from_document(const io::ConfigNode& root, const std::string& 
             fmt::format("'{}', expected hull_survey for an ROV mission", mission.type));
     }
     RovMissionScenario m;
-    m.name = document.name.empty() ? std::filesystem::path(name).stem().string() : document.name;
-    m.description = document.description;
-    m.simulation = sim::scenario_from_node(required(root, "simulation"), "simulation");
-    m.start = document.start;
-    m.linger_s = document.linger_s;
+    detail::take_common(m, document, root, required(root, "simulation"), name);
     m.hull = mission.hull;
     m.plan = mission.plan;
     m.margin_m = mission.margin_m;
     m.plan.validate("mission.plan");
-    m.stack = document.stack;
-    m.faults = document.faults;
-    if (const io::ConfigNode* script = root.find("operator")) {
-        m.operator_script = control::operator_script_from_yaml(*script, "operator").commands();
-    }
     calibrate(m);
     if (const io::ConfigNode* coverage = root.find("coverage")) {
         m.coverage = coverage_from_yaml(*coverage, m.section(), "");

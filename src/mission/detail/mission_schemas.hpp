@@ -4,6 +4,10 @@
 #include <string>
 #include <vector>
 
+#include <filesystem>
+
+#include <scantling/control/config_yaml.hpp>
+#include <scantling/io/config_node.hpp>
 #include <scantling/io/config_schema.hpp>
 #include <scantling/mission/fault_injection.hpp>
 #include <scantling/perception/camera_coverage.hpp>
@@ -45,6 +49,24 @@ io::ConfigSchema<VehicleDocument<Stack>> vehicle_document_schema(
         .section("stack", &S::stack, stack_schema)
         .list("faults", &S::faults, fault_schema());
     return s;
+}
+
+/// Copies what every vehicle's scenario takes from its document into `m`: the name (default:
+/// the file's stem), description, the simulation (`root.simulation`), start, linger_s, the
+/// stack, the faults and the operator script (`root.operator`, if any).
+template <class Scenario, class Stack>
+void take_common(Scenario& m, const VehicleDocument<Stack>& document, const io::ConfigNode& root,
+                 const io::ConfigNode& simulation, const std::string& name) {
+    m.name = document.name.empty() ? std::filesystem::path(name).stem().string() : document.name;
+    m.description = document.description;
+    m.simulation = sim::scenario_from_node(simulation, "simulation");
+    m.start = document.start;
+    m.linger_s = document.linger_s;
+    m.stack = document.stack;
+    m.faults = document.faults;
+    if (const io::ConfigNode* script = root.find("operator")) {
+        m.operator_script = control::operator_script_from_yaml(*script, "operator").commands();
+    }
 }
 
 }  // namespace scantling::mission::detail
