@@ -104,10 +104,6 @@ void deliver(const sim::SensorReading& reading, const FaultInjector& faults,
     }
 }
 
-bool ended(control::MissionState state) {
-    return state == control::MissionState::kCompleted || state == control::MissionState::kAborted;
-}
-
 }  // namespace
 
 MissionResult run_mission(const MissionScenario& scenario, const std::string& directory,
@@ -167,7 +163,7 @@ MissionResult run_mission(const MissionScenario& scenario, const std::string& di
             options.progress({t_s, duration_s, command.state});
             next_progress_s += 1.0;
         }
-        if (ended(command.state) && !ended_at_s) ended_at_s = t_s;
+        if (detail::mission_ended(command.state) && !ended_at_s) ended_at_s = t_s;
         if (ended_at_s && t_s >= *ended_at_s + scenario.linger_s) break;
         if (t_s >= duration_s - 1e-9) {
             files.add_event(t_s, "timeout",

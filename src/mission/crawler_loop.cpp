@@ -248,10 +248,6 @@ void log_command(MissionFiles& files, const CrawlerStackCommand& c, const sim::M
     for (const StackEvent& e : c.events) files.add_event(e.t_s, e.type, e.json);
 }
 
-bool ended(control::MissionState state) {
-    return state == control::MissionState::kCompleted || state == control::MissionState::kAborted;
-}
-
 std::string summary_json(const CrawlerMissionScenario& m, const CrawlerMissionResult& r) {
     nlohmann::ordered_json j;
     j["scenario"] = m.name;
@@ -369,7 +365,7 @@ CrawlerMissionResult run_crawler_mission(const CrawlerMissionScenario& scenario,
             options.progress({t_s, simulation.duration_s, command.state});
             next_progress_s += 1.0;
         }
-        if (ended(command.state) && !ended_at_s) ended_at_s = t_s;
+        if (detail::mission_ended(command.state) && !ended_at_s) ended_at_s = t_s;
         if (ended_at_s && t_s >= *ended_at_s + scenario.linger_s) break;
         if (t_s >= simulation.duration_s - 1e-9) {
             files.add_event(t_s, "timeout",

@@ -5,9 +5,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <numbers>
+#include <nlohmann/json.hpp>
 
+#include <scantling/core/angles.hpp>
 #include <scantling/mission/exploration_stack.hpp>
+
+#include "detail/frames.hpp"
 
 namespace scantling::mission {
 namespace {
@@ -15,12 +18,7 @@ namespace {
 using control::MissionState;
 using control::OperatorCommandType;
 
-double wrap(double angle_rad) { return std::remainder(angle_rad, 2.0 * std::numbers::pi); }
-
-double yaw_of(const Eigen::Isometry3d& T) {
-    const Eigen::Matrix3d R = T.rotation();
-    return std::atan2(R(1, 0), R(0, 0));
-}
+double yaw_of(const Eigen::Isometry3d& T) { return detail::yaw_of(T.linear()); }
 
 /// The period the controllers integrate over: the time since the previous command, or one
 /// nominal tick for the first.
@@ -28,20 +26,6 @@ double step_s(std::optional<double> last_s, double t_s) {
     constexpr double kFirstStep_s = 0.02;
     if (!last_s || t_s <= *last_s) return kFirstStep_s;
     return t_s - *last_s;
-}
-
-/// `text` inside a JSON string: quotes, backslashes and control bytes escaped.
-std::string json_escaped(const std::string& text) {
-    std::string out;
-    for (const char c : text) {
-        if (c == '"' || c == '\\') out += '\\';
-        if (static_cast<unsigned char>(c) < 0x20) {
-            out += fmt::format("\\u{:04x}", static_cast<int>(c));
-            continue;
-        }
-        out += c;
-    }
-    return out;
 }
 
 /// E of the goal: the root's child at the best branch's first state.
@@ -183,7 +167,7 @@ void ExplorationStack::survey(double t_s, ExplorationCommand& out) {
         survey_start_yaw_rad_ = yaw;
         survey_last_yaw_rad_ = yaw;
     }
-    survey_turned_rad_ += std::abs(wrap(yaw - survey_last_yaw_rad_));
+    survey_turned_rad_ += std::abs(wrap_angle_rad(yaw - survey_last_yaw_rad_));
     survey_last_yaw_rad_ = yaw;
     steer(p_hold_world_m_, std::nullopt, t_s, out);
     out.yaw_rate_radps = config_.max_yaw_rate_radps;
@@ -198,8 +182,8 @@ bool ExplorationStack::goal_reached(double t_s) const {
     if (t_s - goal_set_s_ > config_.goal_timeout_s) return true;
     const Eigen::Isometry3d T = T_world_body_estimate();
     const bool at = (T.translation() - *goal_world_m_).norm() <= config_.goal_tolerance_m;
-    const bool facing =
-        !goal_yaw_rad_ || std::abs(wrap(yaw_of(T) - *goal_yaw_rad_)) <= config_.yaw_tolerance_rad;
+    const bool facing = !goal_yaw_rad_ || std::abs(wrap_angle_rad(yaw_of(T) - *goal_yaw_rad_)) <=
+                                              config_.yaw_tolerance_rad;
     return at && facing;
 }
 
@@ -250,7 +234,7 @@ void ExplorationStack::fly_to_goal(double t_s, ExplorationCommand& out) {
     // seconds (seed 2: through the side shell, on an estimate 0.65 m off). The node's own
     // heading is taken at the goal.
     const double travel_yaw = std::atan2(ahead.y(), ahead.x());
-    const double error = std::abs(wrap(travel_yaw - yaw_of(T)));
+    const double error = std::abs(wrap_angle_rad(travel_yaw - yaw_of(T)));
     const double scale = error > config_.max_travel_heading_error_rad ? 0.0 : std::cos(error);
     steer(vtp.vtp_world_m, travel_yaw, t_s, out, scale);
 }
@@ -331,8 +315,9 @@ void ExplorationStack::on_plan(const planning::NbvPlan& plan, PlanRecord& record
         pending_events_.push_back(
             {.t_s = t_s,
              .type = "plan_failed",
-             .json = fmt::format(R"({{"status":"{}","message":"{}"}})", to_string(plan.status),
-                                 json_escaped(plan.message))});
+             .json =
+                 nlohmann::json{{"status", to_string(plan.status)}, {"message", plan.message}}.dump(
+                     -1, ' ', false, nlohmann::json::error_handler_t::replace)});
         if (++failed_plans_in_row_ >= config_.max_failed_plans) {
             set_phase(ExplorationPhase::kDone, t_s, "no plan after backing off");
             set_state(MissionState::kCompleted, t_s, "exploration stopped: no free edge");

@@ -95,10 +95,6 @@ void log_command(MissionFiles& files, const ExplorationCommand& c, double t_s) {
     for (const StackEvent& e : c.events) files.add_event(e.t_s, e.type, e.json);
 }
 
-bool ended(control::MissionState state) {
-    return state == control::MissionState::kCompleted || state == control::MissionState::kAborted;
-}
-
 /// The goals flown as the mission's intended path.
 planning::WaypointPath flown_goals(const ExplorationStack& stack) {
     planning::WaypointPath path;
@@ -191,7 +187,7 @@ ExplorationMissionResult run_exploration_mission(const ExplorationMissionScenari
             options.progress({t_s, simulation.duration_s, command.state});
             next_progress_s += 1.0;
         }
-        if (ended(command.state) && !ended_at_s) {
+        if (detail::mission_ended(command.state) && !ended_at_s) {
             ended_at_s = t_s;
             figures.mark_ended(t_s);
             figures.sample_volume(stack, t_s, true);

@@ -7,32 +7,19 @@
 #include <algorithm>
 #include <cmath>
 
+#include <scantling/core/config_checks.hpp>
 #include <scantling/core/error.hpp>
 #include <scantling/core/random.hpp>
 #include <scantling/core/se3.hpp>
 #include <scantling/core/voxel_grid.hpp>
 #include <scantling/safety/obstacle_points.hpp>
 
+#include "detail/frames.hpp"
+
 namespace scantling::mission {
 namespace {
 
 bool finite(const Eigen::Isometry3d& T) { return T.matrix().allFinite(); }
-
-/// The start pose levelled: the odom frame keeps the start's position and heading only.
-Eigen::Isometry3d levelled(const Eigen::Isometry3d& T_world_body) {
-    const Eigen::Matrix3d R = T_world_body.rotation();
-    const double yaw = std::atan2(R(1, 0), R(0, 0));
-    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
-    T.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-    T.translation() = T_world_body.translation();
-    return T;
-}
-
-void require_positive(double value, std::string_view prefix, const char* field) {
-    if (!(std::isfinite(value) && value > 0.0)) {
-        throw ConfigError(fmt::format("{}.{} = {}, expected finite > 0", prefix, field, value));
-    }
-}
 
 }  // namespace
 
@@ -51,6 +38,9 @@ const char* to_string(ExplorationPhase phase) {
 }
 
 void ExplorationStackConfig::validate(std::string_view prefix) const {
+    using config_checks::require_at_least;
+    using config_checks::require_non_negative;
+    using config_checks::require_positive;
     local_ekf.validate(fmt::format("{}.local_ekf", prefix));
     map.validate(fmt::format("{}.map", prefix));
     nbv.validate(fmt::format("{}.nbv", prefix));
@@ -83,22 +73,10 @@ void ExplorationStackConfig::validate(std::string_view prefix) const {
             fmt::format("{}.max_nodes_when_exhausted = {}, expected >= {}.nbv.max_nodes = {}",
                         prefix, max_nodes_when_exhausted, prefix, nbv.max_nodes));
     }
-    if (max_failed_plans < 1) {
-        throw ConfigError(
-            fmt::format("{}.max_failed_plans = {}, expected >= 1", prefix, max_failed_plans));
-    }
-    if (exhausted_plans_to_finish < 1) {
-        throw ConfigError(fmt::format("{}.exhausted_plans_to_finish = {}, expected >= 1", prefix,
-                                      exhausted_plans_to_finish));
-    }
-    if (!(std::isfinite(takeoff_clearance_m) && takeoff_clearance_m >= 0.0)) {
-        throw ConfigError(fmt::format("{}.takeoff_clearance_m = {}, expected finite >= 0", prefix,
-                                      takeoff_clearance_m));
-    }
-    if (!(std::isfinite(self_clearance_m) && self_clearance_m >= 0.0)) {
-        throw ConfigError(fmt::format("{}.self_clearance_m = {}, expected finite >= 0", prefix,
-                                      self_clearance_m));
-    }
+    require_at_least(max_failed_plans, 1, prefix, "max_failed_plans");
+    require_at_least(exhausted_plans_to_finish, 1, prefix, "exhausted_plans_to_finish");
+    require_non_negative(takeoff_clearance_m, prefix, "takeoff_clearance_m");
+    require_non_negative(self_clearance_m, prefix, "self_clearance_m");
     if (!finite(T_body_depth) || !finite(T_body_camera)) {
         throw ConfigError(fmt::format("{}.T_body_depth / T_body_camera: expected finite", prefix));
     }
@@ -127,7 +105,7 @@ ExplorationStackConfig validated(ExplorationStackConfig config) {
 ExplorationStack::ExplorationStack(ExplorationStackConfig config,
                                    const Eigen::Isometry3d& T_world_body_start, double start_s)
     : config_(validated(std::move(config))),
-      T_world_odom_(levelled(T_world_body_start)),
+      T_world_odom_(detail::levelled(T_world_body_start, "exploration stack")),
       local_(config_.local_ekf),
       map_(config_.map),
       planner_(config_.nbv),
@@ -140,8 +118,7 @@ ExplorationStack::ExplorationStack(ExplorationStackConfig config,
     local_.initialize(start_s, T_world_odom_.inverse() * T_world_body_start);
     p_start_world_m_ = T_world_body_start.translation();
     p_hold_world_m_ = p_start_world_m_;
-    const Eigen::Matrix3d R = T_world_body_start.rotation();
-    yaw_hold_rad_ = std::atan2(R(1, 0), R(0, 0));
+    yaw_hold_rad_ = detail::yaw_of(T_world_body_start.linear());
 }
 
 void ExplorationStack::reject(const std::string& sensor, double stamp_s) {
@@ -198,9 +175,8 @@ void ExplorationStack::fuse_vio_yaw(const io::VioRecord& sample) {
     const Eigen::Matrix3d R = sample.T_odom_body.rotation();
     const double sigma_rad =
         std::max(std::sqrt(std::max(sample.variances[5], 0.0)), config_.vio_increment_sigma_rad);
-    local_.update_yaw({.stamp_s = sample.stamp_s,
-                       .yaw_odom_rad = std::atan2(R(1, 0), R(0, 0)),
-                       .sigma_rad = sigma_rad});
+    local_.update_yaw(
+        {.stamp_s = sample.stamp_s, .yaw_odom_rad = detail::yaw_of(R), .sigma_rad = sigma_rad});
     vio_yaw_stamp_s_ = sample.stamp_s;
 }
 

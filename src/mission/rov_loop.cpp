@@ -72,10 +72,6 @@ void log_command(MissionFiles& files, const RovStackCommand& c, double t_s) {
     for (const StackEvent& e : c.events) files.add_event(e.t_s, e.type, e.json);
 }
 
-bool ended(control::MissionState state) {
-    return state == control::MissionState::kCompleted || state == control::MissionState::kAborted;
-}
-
 /// The sonar map's voxels for the operator: mean, normal, points and uncertainty.
 std::string sonar_map_csv(const mapping::SonarInspectionMap& map) {
     std::string text = "# x_m y_m z_m nx ny nz points uncertainty_m first_s last_s\n";
@@ -222,7 +218,7 @@ RovMissionResult run_rov_mission(const RovMissionScenario& scenario, const std::
             options.progress({t_s, simulation.duration_s, command.state});
             next_progress_s += 1.0;
         }
-        if (ended(command.state) && !ended_at_s) ended_at_s = t_s;
+        if (detail::mission_ended(command.state) && !ended_at_s) ended_at_s = t_s;
         if (ended_at_s && t_s >= *ended_at_s + scenario.linger_s) break;
         if (t_s >= simulation.duration_s - 1e-9) {
             files.add_event(

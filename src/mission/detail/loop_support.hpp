@@ -96,6 +96,11 @@ void log_faults(MissionFiles& files, FaultInjector& faults, double t_s);
 
 std::vector<sim::SensorType> sensor_types(const sim::Scenario& simulation);
 
+/// The mission is over (completed or aborted): the loop lingers, then stops.
+inline bool mission_ended(control::MissionState state) {
+    return state == control::MissionState::kCompleted || state == control::MissionState::kAborted;
+}
+
 /// DIR/world/ (the world's map, mesh and metadata) when the scenario exports it.
 void write_world_if_exported(sim::RecordingWriter& writer, const sim::Scenario& simulation,
                              const sim::Simulator& sim);
